@@ -1,0 +1,34 @@
+//! # subsurf: subdivision surfaces for the web
+//!
+//! Flat arrays in, flat arrays out. Build a [`PolyMesh`] (positions, face indices, face sizes),
+//! call [`subdivide`], get the refined [`PolyMesh`] back.
+//!
+//! ```
+//! use subsurf::{subdivide, Options, PolyMesh, Scheme};
+//! // A unit square, one quad.
+//! let square = PolyMesh {
+//!     positions: vec![0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.],
+//!     indices: vec![0, 1, 2, 3],
+//!     face_sizes: vec![4],
+//! };
+//! let refined = subdivide(&square, &Options::new(Scheme::CatmullClark, 2)).unwrap();
+//! assert_eq!(refined.num_faces(), 16);
+//! ```
+//!
+//! Layers, bottom up: [`mesh`] (the half-edge mesh), [`refine`] (topology hosts) × [`rules`]
+//! (stencil policies), [`scheme`] (the public vocabulary), [`io`] (OBJ), and the wasm bindings.
+
+pub mod error;
+pub mod io;
+pub mod mesh;
+pub mod refine;
+pub mod rules;
+pub mod scheme;
+pub mod shapes;
+
+#[cfg(target_arch = "wasm32")]
+pub mod wasm;
+
+pub use error::{Error, Result};
+pub use mesh::{HalfEdgeMesh, PolyMesh};
+pub use scheme::{subdivide, Boundary, Options, Scheme};
