@@ -1,0 +1,158 @@
+//! `subsurf --scheme catmull-clark --levels N [--boundary MODE] INPUT.obj -o OUTPUT.obj`
+
+use std::process::ExitCode;
+use std::time::Instant;
+use subsurf::io::{read_obj, write_obj};
+use subsurf::scheme::{Boundary, Options, Scheme};
+use subsurf::HalfEdgeMesh;
+
+const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
+
+  --scheme SCHEME    catmull-clark (default)
+  --levels N         levels of subdivision, 0 or more (default 1)
+  --boundary MODE    edge-and-corner (default), edge-only, fixed, average
+  --max-faces N      refuse when the result would have more faces (default 16777216)
+  --stats            print counts and timings to stderr
+  -o OUTPUT.obj      where to write the result (default: standard output)";
+
+struct Args {
+    scheme: Scheme,
+    levels: u32,
+    boundary: Boundary,
+    max_faces: u64,
+    stats: bool,
+    input: String,
+    output: Option<String>,
+}
+
+fn parse_args(args: &[String]) -> Result<Args, String> {
+    let mut parsed = Args {
+        scheme: Scheme::CatmullClark,
+        levels: 1,
+        boundary: Boundary::default(),
+        max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
+        stats: false,
+        input: String::new(),
+        output: None,
+    };
+    let mut input = None;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let mut value = |flag: &str| {
+            it.next()
+                .cloned()
+                .ok_or_else(|| format!("{flag} needs a value"))
+        };
+        match arg.as_str() {
+            "--scheme" => parsed.scheme = value("--scheme")?.parse().map_err(|e| format!("{e}"))?,
+            "--levels" => {
+                let v = value("--levels")?;
+                parsed.levels = v.parse().map_err(|_| {
+                    format!("--levels '{v}' is not a whole number of levels (0, 1, 2, ...)")
+                })?;
+            }
+            "--boundary" => {
+                parsed.boundary = value("--boundary")?.parse().map_err(|e| format!("{e}"))?
+            }
+            "--max-faces" => {
+                let v = value("--max-faces")?;
+                parsed.max_faces = v
+                    .parse()
+                    .map_err(|_| format!("--max-faces '{v}' is not a whole number"))?;
+            }
+            "--stats" => parsed.stats = true,
+            "-o" | "--output" => parsed.output = Some(value("-o")?),
+            "-h" | "--help" => return Err(String::new()),
+            flag if flag.starts_with('-') && flag.len() > 1 => {
+                return Err(format!("unknown option '{flag}'"));
+            }
+            path => {
+                if input.replace(path.to_string()).is_some() {
+                    return Err(format!("more than one input file given ('{path}')"));
+                }
+            }
+        }
+    }
+    parsed.input = input.ok_or("no input file given")?;
+    Ok(parsed)
+}
+
+fn run(args: Args) -> Result<(), String> {
+    let start = Instant::now();
+    let text = std::fs::read_to_string(&args.input)
+        .map_err(|e| format!("cannot read '{}': {e}", args.input))?;
+    let input = read_obj(&text).map_err(|e| format!("{}: {e}", args.input))?;
+    let read_time = start.elapsed();
+
+    let t = Instant::now();
+    let mesh = HalfEdgeMesh::from_poly(&input).map_err(|e| format!("{}: {e}", args.input))?;
+    let build_time = t.elapsed();
+    let options = Options::new(args.scheme, args.levels).with_boundary(args.boundary);
+    let options = Options {
+        max_faces: args.max_faces,
+        ..options
+    };
+    let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
+    let t = Instant::now();
+    let output = subsurf::scheme::subdivide_mesh(mesh, &options).map_err(|e| e.to_string())?;
+    let refine_time = t.elapsed();
+
+    let t = Instant::now();
+    let text = write_obj(&output);
+    match &args.output {
+        Some(path) => {
+            std::fs::write(path, text).map_err(|e| format!("cannot write '{path}': {e}"))?
+        }
+        None => {
+            use std::io::Write;
+            std::io::stdout()
+                .write_all(text.as_bytes())
+                .map_err(|e| format!("cannot write to standard output: {e}"))?;
+        }
+    }
+    let write_time = t.elapsed();
+    if args.stats {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        eprintln!(
+            "scheme      {} x {} ({} boundary)",
+            args.scheme, args.levels, args.boundary
+        );
+        eprintln!("input       {in_v} vertices, {in_e} edges, {in_f} faces");
+        eprintln!(
+            "output      {} vertices, {} faces",
+            output.num_vertices(),
+            output.num_faces()
+        );
+        eprintln!("read        {:.3} ms", ms(read_time));
+        eprintln!("build       {:.3} ms", ms(build_time));
+        eprintln!("subdivide   {:.3} ms", ms(refine_time));
+        eprintln!("write       {:.3} ms", ms(write_time));
+        let rate = output.num_faces() as f64 / (build_time + refine_time).as_secs_f64();
+        eprintln!(
+            "throughput  {:.1} M output faces/s (build + subdivide)",
+            rate / 1e6
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match parse_args(&args) {
+        Err(message) if message.is_empty() => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
+        Err(message) => {
+            eprintln!("subsurf: {message}\n\n{USAGE}");
+            ExitCode::from(2)
+        }
+        Ok(args) => match run(args) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(message) => {
+                eprintln!("subsurf: {message}");
+                ExitCode::FAILURE
+            }
+        },
+    }
+}

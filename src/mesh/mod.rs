@@ -1,0 +1,274 @@
+//! The half-edge mesh: struct-of-arrays connectivity with `u32` indices.
+//!
+//! Every cell (face) owns a contiguous run of half-edges, one per corner, in the order the face
+//! lists its vertices. Half-edge `h` runs from corner `k` to corner `k + 1` of its cell. Half-edges
+//! that share an unordered vertex pair share an edge; the half-edges of one edge form a cycle
+//! (`next_around_edge`), so an edge used by three or more cells, or by two cells in the same
+//! direction, is represented as it is (non-manifold), as the seed `002` allows. A boundary edge
+//! has a cycle of one.
+//!
+//! The query API follows the seed's names in Rust style; see [`VertexRef`], [`HalfEdgeRef`] and
+//! [`CellRef`]. Entry points that take an index return `Option`, so a bad index is never a panic.
+
+mod build;
+mod handles;
+mod poly;
+
+pub use handles::{CellRef, HalfEdgeRef, VertexRef};
+pub use poly::PolyMesh;
+
+use crate::error::Result;
+
+/// A polygon mesh with half-edge connectivity, stored as flat arrays.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct HalfEdgeMesh {
+    pub(crate) positions: Vec<[f32; 3]>,
+    /// `cell_offsets[c]..cell_offsets[c + 1]` are the half-edges of cell `c`; length `F + 1`.
+    pub(crate) cell_offsets: Vec<u32>,
+    /// From-vertex of each half-edge; also the flat face index list.
+    pub(crate) he_from: Vec<u32>,
+    pub(crate) he_cell: Vec<u32>,
+    pub(crate) he_edge: Vec<u32>,
+    pub(crate) he_next_around_edge: Vec<u32>,
+    /// `[from, to]` of the first half-edge of each edge.
+    pub(crate) edge_vertices: Vec<[u32; 2]>,
+    /// `edge_offsets[e]..edge_offsets[e + 1]` index `edge_half_edges`; length `E + 1`.
+    pub(crate) edge_offsets: Vec<u32>,
+    pub(crate) edge_half_edges: Vec<u32>,
+    /// `vertex_offsets[v]..vertex_offsets[v + 1]` index `vertex_half_edges`, the half-edges leaving
+    /// `v`, a boundary one first when there is one; length `V + 1`.
+    pub(crate) vertex_offsets: Vec<u32>,
+    pub(crate) vertex_half_edges: Vec<u32>,
+}
+
+/// Where a mesh stops being a 2-manifold, for schemes that need to say so.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NonManifold {
+    /// An edge with more than two half-edges, or two running the same way.
+    Edge { edge: u32, from: u32, to: u32 },
+    /// A vertex whose faces form more than one fan.
+    Vertex { vertex: u32 },
+}
+
+impl HalfEdgeMesh {
+    /// Builds a mesh from flat arrays, validating all of them. See [`PolyMesh`] for the layout.
+    pub fn from_faces(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<Self> {
+        build::from_faces(positions, indices, face_sizes)
+    }
+
+    /// Builds a mesh from a [`PolyMesh`].
+    pub fn from_poly(poly: &PolyMesh) -> Result<Self> {
+        Self::from_faces(&poly.positions, &poly.indices, &poly.face_sizes)
+    }
+
+    /// The flat arrays again: positions, the face index list and face sizes.
+    pub fn to_poly(&self) -> PolyMesh {
+        PolyMesh {
+            positions: self.positions.as_flattened().to_vec(),
+            indices: self.he_from.clone(),
+            face_sizes: self.cell_offsets.windows(2).map(|w| w[1] - w[0]).collect(),
+        }
+    }
+
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn num_half_edges(&self) -> usize {
+        self.he_from.len()
+    }
+
+    pub fn num_cells(&self) -> usize {
+        self.cell_offsets.len().saturating_sub(1)
+    }
+
+    pub fn num_edges(&self) -> usize {
+        self.edge_vertices.len()
+    }
+
+    pub fn vertex(&self, v: u32) -> Option<VertexRef<'_>> {
+        ((v as usize) < self.num_vertices()).then_some(VertexRef { mesh: self, index: v })
+    }
+
+    pub fn half_edge(&self, h: u32) -> Option<HalfEdgeRef<'_>> {
+        ((h as usize) < self.num_half_edges()).then_some(HalfEdgeRef { mesh: self, index: h })
+    }
+
+    pub fn cell(&self, c: u32) -> Option<CellRef<'_>> {
+        ((c as usize) < self.num_cells()).then_some(CellRef { mesh: self, index: c })
+    }
+
+    pub fn vertex_indices(&self) -> std::ops::Range<u32> {
+        0..self.num_vertices() as u32
+    }
+
+    pub fn half_edge_indices(&self) -> std::ops::Range<u32> {
+        0..self.num_half_edges() as u32
+    }
+
+    pub fn cell_indices(&self) -> std::ops::Range<u32> {
+        0..self.num_cells() as u32
+    }
+
+    /// The largest vertex index, or `None` for a mesh without vertices; the next free index is
+    /// one more.
+    pub fn max_vertex_index(&self) -> Option<u32> {
+        self.num_vertices().checked_sub(1).map(|v| v as u32)
+    }
+
+    pub fn max_half_edge_index(&self) -> Option<u32> {
+        self.num_half_edges().checked_sub(1).map(|h| h as u32)
+    }
+
+    pub fn max_cell_index(&self) -> Option<u32> {
+        self.num_cells().checked_sub(1).map(|c| c as u32)
+    }
+
+    /// The two vertices of edge `e`, in the direction of its first half-edge.
+    pub fn edge_vertices(&self, e: u32) -> Option<[u32; 2]> {
+        self.edge_vertices.get(e as usize).copied()
+    }
+
+    /// The half-edges of edge `e`: one for a boundary edge, two for an interior manifold edge.
+    pub fn edge_half_edges(&self, e: u32) -> Option<&[u32]> {
+        let start = *self.edge_offsets.get(e as usize)? as usize;
+        let end = *self.edge_offsets.get(e as usize + 1)? as usize;
+        self.edge_half_edges.get(start..end)
+    }
+
+    /// Positions as `[x, y, z]` per vertex.
+    pub fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
+    }
+
+    /// The flat face index list (the from-vertex of every half-edge, cell by cell).
+    pub fn face_indices(&self) -> &[u32] {
+        &self.he_from
+    }
+
+    /// Adds `count` vertices at the origin and returns the index of the first.
+    pub fn add_vertices(&mut self, count: u32) -> u32 {
+        let first = self.num_vertices() as u32;
+        self.positions.resize(first as usize + count as usize, [0.0; 3]);
+        let total = *self.vertex_offsets.last().unwrap_or(&0);
+        if self.vertex_offsets.is_empty() {
+            self.vertex_offsets.push(0);
+        }
+        self.vertex_offsets.resize(self.positions.len() + 1, total);
+        first
+    }
+
+    /// Makes sure vertex `v` exists, adding vertices at the origin up to it.
+    pub fn add_vertex(&mut self, v: u32) {
+        let have = self.num_vertices() as u32;
+        if v >= have {
+            self.add_vertices(v - have + 1);
+        }
+    }
+
+    /// Sets the coordinates of vertex `v`. Fails on a missing vertex or a non-finite value.
+    pub fn set_coord(&mut self, v: u32, coord: [f32; 3]) -> Result<()> {
+        if !coord.iter().all(|c| c.is_finite()) {
+            return Err(crate::Error::mesh(format!(
+                "vertex {v}: coordinates {coord:?} are not finite; give finite numbers"
+            )));
+        }
+        let n = self.num_vertices();
+        let slot = self.positions.get_mut(v as usize).ok_or_else(|| {
+            crate::Error::mesh(format!("vertex {v} does not exist; the mesh has {n} vertices"))
+        })?;
+        *slot = coord;
+        Ok(())
+    }
+
+    /// Adds a cell with the given vertices in order around it, creating missing vertices, and
+    /// returns its index. This rebuilds the connectivity, O(mesh size) per call: build large
+    /// meshes with [`HalfEdgeMesh::from_faces`] instead.
+    pub fn add_cell(&mut self, cell_vertices: &[u32]) -> Result<u32> {
+        if let Some(&max) = cell_vertices.iter().max() {
+            self.add_vertex(max);
+        }
+        let mut indices = self.he_from.clone();
+        indices.extend_from_slice(cell_vertices);
+        let mut sizes: Vec<u32> = self.cell_offsets.windows(2).map(|w| w[1] - w[0]).collect();
+        sizes.push(cell_vertices.len() as u32);
+        let rebuilt = build::from_faces(self.positions.as_flattened(), &indices, &sizes)?;
+        *self = rebuilt;
+        Ok(self.num_cells() as u32 - 1)
+    }
+
+    /// The first place the mesh is not a 2-manifold, if any.
+    pub fn first_non_manifold(&self) -> Option<NonManifold> {
+        for e in 0..self.num_edges() {
+            let hs = &self.edge_half_edges
+                [self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize];
+            let bad = hs.len() > 2 || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize]);
+            if bad {
+                let [from, to] = self.edge_vertices[e];
+                return Some(NonManifold::Edge { edge: e as u32, from, to });
+            }
+        }
+        (0..self.num_vertices() as u32)
+            .find(|&v| !self.is_single_fan(v))
+            .map(|vertex| NonManifold::Vertex { vertex })
+    }
+
+    /// True when the faces around `v` form one fan (assuming manifold edges).
+    fn is_single_fan(&self, v: u32) -> bool {
+        let out = self.out_half_edges(v);
+        let Some(&start) = out.first() else { return true };
+        let mut h = start;
+        let mut visited = 1usize;
+        loop {
+            let incoming = self.prev_in_cell(h);
+            let across = self.he_next_around_edge[incoming as usize];
+            if across == incoming || across == start {
+                break;
+            }
+            h = across;
+            visited += 1;
+            if visited > out.len() {
+                return false;
+            }
+        }
+        visited == out.len()
+    }
+
+    // Index arithmetic shared by the handles and the refinement hosts.
+
+    #[inline]
+    pub(crate) fn out_half_edges(&self, v: u32) -> &[u32] {
+        let v = v as usize;
+        &self.vertex_half_edges[self.vertex_offsets[v] as usize..self.vertex_offsets[v + 1] as usize]
+    }
+
+    #[inline]
+    pub(crate) fn next_in_cell(&self, h: u32) -> u32 {
+        let c = self.he_cell[h as usize] as usize;
+        if h + 1 == self.cell_offsets[c + 1] {
+            self.cell_offsets[c]
+        } else {
+            h + 1
+        }
+    }
+
+    #[inline]
+    pub(crate) fn prev_in_cell(&self, h: u32) -> u32 {
+        let c = self.he_cell[h as usize] as usize;
+        if h == self.cell_offsets[c] {
+            self.cell_offsets[c + 1] - 1
+        } else {
+            h - 1
+        }
+    }
+
+    #[inline]
+    pub(crate) fn to_vertex(&self, h: u32) -> u32 {
+        self.he_from[self.next_in_cell(h) as usize]
+    }
+
+    #[inline]
+    pub(crate) fn edge_range(&self, e: usize) -> std::ops::Range<usize> {
+        self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize
+    }
+}

@@ -1,0 +1,184 @@
+//! Primal quad quadrisection (PQQ): an n-gon splits into n quads around its face point.
+//!
+//! The child mesh is written by index arithmetic from the parent's arrays (seed `000`'s
+//! `RefineHalfEdges`, generalised to edges with any number of half-edges). For parent half-edge
+//! `h` in cell `c`, from vertex `a`, on edge `e`, with previous half-edge `p` on edge `d`:
+//!
+//! | child half-edge | from            | to              | on child edge        |
+//! |-----------------|-----------------|-----------------|----------------------|
+//! | `4h + 0`        | `a`             | `V + F + e`     | half of `e` at `a`   |
+//! | `4h + 1`        | `V + F + e`     | `V + c`         | `2E + h`             |
+//! | `4h + 2`        | `V + c`         | `V + F + d`     | `2E + p`             |
+//! | `4h + 3`        | `V + F + d`     | `a`             | half of `d` at `a`   |
+//!
+//! so child cell `h` is the quad `(a, edge point of e, face point, edge point of d)`, child vertex
+//! order is `[old vertices | face points | edge points]`, and the half of parent edge `e` that
+//! touches its first vertex is child edge `2e`, the other `2e + 1`. Every loop writes only the
+//! entries of its own iteration.
+
+use crate::mesh::HalfEdgeMesh;
+use crate::rules::QuadSplitRules;
+
+/// Child vertex, edge, half-edge and cell counts of one PQQ level, in `u64` so that a guard can
+/// compare them before anything is allocated.
+pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [u64; 4] {
+    [vertices + cells + edges, 2 * edges + half_edges, 4 * half_edges, half_edges]
+}
+
+/// New positions in child vertex order, computed by the host's stencil policy `rules`.
+pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
+    let (v, f, e) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
+    let mut points = vec![[0.0f32; 3]; v + f + e];
+    let (vertex_points, rest) = points.split_at_mut(v);
+    let (face_points, edge_points) = rest.split_at_mut(f);
+    for (c, p) in face_points.iter_mut().enumerate() {
+        *p = rules.face_point(mesh, c as u32).to_array();
+    }
+    let face_points = &*face_points;
+    for (i, p) in edge_points.iter_mut().enumerate() {
+        *p = rules.edge_point(mesh, face_points, i as u32).to_array();
+    }
+    for (i, p) in vertex_points.iter_mut().enumerate() {
+        *p = rules.vertex_point(mesh, face_points, i as u32).to_array();
+    }
+    points
+}
+
+/// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
+pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
+    let (v, f) = (mesh.num_vertices() as u32, mesh.num_cells() as u32);
+    let edge_base = v + f;
+    let mut indices = vec![0u32; 4 * mesh.num_half_edges()];
+    for (c, range) in mesh.cell_offsets.windows(2).enumerate() {
+        let (start, end) = (range[0] as usize, range[1] as usize);
+        let face_point = v + c as u32;
+        let mut prev_edge = mesh.he_edge[end - 1];
+        for h in start..end {
+            let edge = mesh.he_edge[h];
+            indices[4 * h..4 * h + 4].copy_from_slice(&[
+                mesh.he_from[h],
+                edge_base + edge,
+                face_point,
+                edge_base + prev_edge,
+            ]);
+            prev_edge = edge;
+        }
+    }
+    indices
+}
+
+/// The complete child mesh, with `positions` from [`refine_points`].
+pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh {
+    let (nv, nf, ne, nh) = (
+        mesh.num_vertices() as u32,
+        mesh.num_cells() as u32,
+        mesh.num_edges() as u32,
+        mesh.num_half_edges() as u32,
+    );
+    let edge_base = nv + nf;
+    // Which half of edge `e` touches vertex `a`: child edge 2e or 2e + 1.
+    let half_at = |e: u32, a: u32| 2 * e + (mesh.edge_vertices[e as usize][0] != a) as u32;
+    // The child half-edge that parent half-edge `x` leaves on the half of its edge at `a`.
+    let child_at = |x: u32, a: u32| {
+        if mesh.he_from[x as usize] == a {
+            4 * x
+        } else {
+            4 * mesh.next_in_cell(x) + 3
+        }
+    };
+
+    let he_from = child_face_indices(mesh);
+    let mut he_cell = vec![0u32; 4 * nh as usize];
+    let mut he_edge = vec![0u32; 4 * nh as usize];
+    let mut he_next_around_edge = vec![0u32; 4 * nh as usize];
+    for h in 0..nh {
+        let hs = 4 * h as usize..4 * h as usize + 4;
+        let a = mesh.he_from[h as usize];
+        let p = mesh.prev_in_cell(h);
+        let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
+        he_cell[hs.clone()].fill(h);
+        he_edge[hs.clone()].copy_from_slice(&[half_at(e, a), 2 * ne + h, 2 * ne + p, half_at(d, a)]);
+        he_next_around_edge[hs].copy_from_slice(&[
+            child_at(mesh.he_next_around_edge[h as usize], a),
+            4 * mesh.next_in_cell(h) + 2,
+            4 * p + 1,
+            child_at(mesh.he_next_around_edge[p as usize], a),
+        ]);
+    }
+
+    let mut edge_vertices = vec![[0u32; 2]; (2 * ne + nh) as usize];
+    let mut edge_offsets = vec![0u32; (2 * ne + nh + 1) as usize];
+    let mut edge_half_edges = vec![0u32; 4 * nh as usize];
+    let (split_vertices, inner_vertices) = edge_vertices.split_at_mut(2 * ne as usize);
+    for (e, pair) in split_vertices.chunks_exact_mut(2).enumerate() {
+        let [a, b] = mesh.edge_vertices[e];
+        let mid = edge_base + e as u32;
+        pair.copy_from_slice(&[[a, mid], [mid, b]]);
+        let start = mesh.edge_offsets[e];
+        let count = mesh.edge_offsets[e + 1] - start;
+        edge_offsets[2 * e] = 2 * start;
+        edge_offsets[2 * e + 1] = 2 * start + count;
+    }
+    for (h, pair) in inner_vertices.iter_mut().enumerate() {
+        *pair = [edge_base + mesh.he_edge[h], nv + mesh.he_cell[h]];
+        edge_offsets[2 * ne as usize + h] = 2 * nh + 2 * h as u32;
+    }
+    edge_offsets[(2 * ne + nh) as usize] = 4 * nh;
+    let (split_lists, inner_lists) = edge_half_edges.split_at_mut(2 * nh as usize);
+    for e in 0..ne as usize {
+        let [a, b] = mesh.edge_vertices[e];
+        let parent = &mesh.edge_half_edges[mesh.edge_range(e)];
+        let out = &mut split_lists[2 * mesh.edge_offsets[e] as usize..][..2 * parent.len()];
+        let (near_a, near_b) = out.split_at_mut(parent.len());
+        for (i, &x) in parent.iter().enumerate() {
+            near_a[i] = child_at(x, a);
+            near_b[i] = child_at(x, b);
+        }
+    }
+    for (h, pair) in inner_lists.chunks_exact_mut(2).enumerate() {
+        pair.copy_from_slice(&[4 * h as u32 + 1, 4 * mesh.next_in_cell(h as u32) + 2]);
+    }
+
+    let mut vertex_offsets = vec![0u32; (nv + nf + ne + 1) as usize];
+    let mut vertex_half_edges = vec![0u32; 4 * nh as usize];
+    vertex_offsets[..=nv as usize].copy_from_slice(&mesh.vertex_offsets);
+    for c in 0..nf as usize {
+        vertex_offsets[nv as usize + c] = nh + mesh.cell_offsets[c];
+    }
+    for e in 0..ne as usize {
+        vertex_offsets[edge_base as usize + e] = 2 * nh + 2 * mesh.edge_offsets[e];
+    }
+    vertex_offsets[(nv + nf + ne) as usize] = 4 * nh;
+    let (old_lists, rest) = vertex_half_edges.split_at_mut(nh as usize);
+    let (face_lists, edge_lists) = rest.split_at_mut(nh as usize);
+    for (slot, &x) in old_lists.iter_mut().zip(&mesh.vertex_half_edges) {
+        *slot = 4 * x;
+    }
+    for (h, slot) in face_lists.iter_mut().enumerate() {
+        *slot = 4 * h as u32 + 2;
+    }
+    for e in 0..ne as usize {
+        let parent = &mesh.edge_half_edges[mesh.edge_range(e)];
+        let out = &mut edge_lists[2 * mesh.edge_offsets[e] as usize..][..2 * parent.len()];
+        let (along, inward) = out.split_at_mut(parent.len());
+        for (i, &x) in parent.iter().enumerate() {
+            // Along the split edge first: it is a boundary half-edge when the parent edge was.
+            along[i] = 4 * mesh.next_in_cell(x) + 3;
+            inward[i] = 4 * x + 1;
+        }
+    }
+
+    HalfEdgeMesh {
+        positions,
+        cell_offsets: (0..=nh).map(|c| 4 * c).collect(),
+        he_from,
+        he_cell,
+        he_edge,
+        he_next_around_edge,
+        edge_vertices,
+        edge_offsets,
+        edge_half_edges,
+        vertex_offsets,
+        vertex_half_edges,
+    }
+}
