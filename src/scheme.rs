@@ -45,8 +45,12 @@ pub enum Boundary {
 }
 
 impl Boundary {
-    pub const ALL: &'static [Boundary] =
-        &[Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average];
+    pub const ALL: &'static [Boundary] = &[
+        Boundary::EdgeAndCorner,
+        Boundary::EdgeOnly,
+        Boundary::Fixed,
+        Boundary::Average,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -58,11 +62,22 @@ impl Boundary {
     }
 }
 
-fn parse_name<T: Copy>(what: &str, value: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T> {
-    all.iter().copied().find(|&t| name(t) == value).ok_or_else(|| {
-        let allowed: Vec<_> = all.iter().map(|&t| format!("'{}'", name(t))).collect();
-        Error::InvalidOption(format!("unknown {what} '{value}'; use one of {}", allowed.join(", ")))
-    })
+fn parse_name<T: Copy>(
+    what: &str,
+    value: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> Result<T> {
+    all.iter()
+        .copied()
+        .find(|&t| name(t) == value)
+        .ok_or_else(|| {
+            let allowed: Vec<_> = all.iter().map(|&t| format!("'{}'", name(t))).collect();
+            Error::InvalidOption(format!(
+                "unknown {what} '{value}'; use one of {}",
+                allowed.join(", ")
+            ))
+        })
 }
 
 impl FromStr for Scheme {
@@ -108,14 +123,21 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Options { schemes: vec![Scheme::CatmullClark], boundary: Boundary::default(), max_faces: DEFAULT_MAX_FACES }
+        Options {
+            schemes: vec![Scheme::CatmullClark],
+            boundary: Boundary::default(),
+            max_faces: DEFAULT_MAX_FACES,
+        }
     }
 }
 
 impl Options {
     /// `levels` levels of one scheme.
     pub fn new(scheme: Scheme, levels: u32) -> Self {
-        Options { schemes: vec![scheme; levels as usize], ..Options::default() }
+        Options {
+            schemes: vec![scheme; levels as usize],
+            ..Options::default()
+        }
     }
 
     pub fn with_boundary(mut self, boundary: Boundary) -> Self {
@@ -130,8 +152,12 @@ impl Options {
 
 /// Predicted `(vertices, faces)` after all levels, saturating instead of overflowing.
 pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
-    let (mut v, mut e, mut h, mut f) =
-        (mesh.num_vertices() as u64, mesh.num_edges() as u64, mesh.num_half_edges() as u64, mesh.num_cells() as u64);
+    let (mut v, mut e, mut h, mut f) = (
+        mesh.num_vertices() as u64,
+        mesh.num_edges() as u64,
+        mesh.num_half_edges() as u64,
+        mesh.num_cells() as u64,
+    );
     for scheme in &options.schemes {
         match scheme {
             Scheme::CatmullClark => {
@@ -168,13 +194,24 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
         let last = level + 1 == levels;
         match scheme {
             Scheme::CatmullClark => {
-                let rules = CatmullClark { boundary: options.boundary };
-                let positions = pqq::refine_points(&mesh, &rules);
+                let rules = CatmullClark {
+                    boundary: options.boundary,
+                };
+                let count = pqq::num_child_vertices(&mesh);
                 if last {
+                    // Written straight into the output array: no copy of the largest buffer.
+                    let mut positions = vec![0.0f32; 3 * count];
+                    pqq::refine_points(&mesh, &rules, positions.as_chunks_mut::<3>().0);
                     let indices = pqq::child_face_indices(&mesh);
                     let face_sizes = vec![4; mesh.num_half_edges()];
-                    return Ok(PolyMesh { positions: positions.as_flattened().to_vec(), indices, face_sizes });
+                    return Ok(PolyMesh {
+                        positions,
+                        indices,
+                        face_sizes,
+                    });
                 }
+                let mut positions = vec![[0.0f32; 3]; count];
+                pqq::refine_points(&mesh, &rules, &mut positions);
                 mesh = pqq::child_mesh(&mesh, positions);
             }
         }

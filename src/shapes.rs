@@ -16,7 +16,9 @@ pub fn cube() -> PolyMesh {
     }
     PolyMesh {
         positions,
-        indices: vec![0, 4, 5, 1, 4, 6, 7, 5, 6, 2, 3, 7, 2, 0, 1, 3, 1, 5, 7, 3, 0, 2, 6, 4],
+        indices: vec![
+            0, 4, 5, 1, 4, 6, 7, 5, 6, 2, 3, 7, 2, 0, 1, 3, 1, 5, 7, 3, 0, 2, 6, 4,
+        ],
         face_sizes: vec![4; 6],
     }
 }
@@ -32,7 +34,11 @@ pub fn torus(rings: u32, segments: u32, major: f32, minor: f32) -> PolyMesh {
         for j in 0..segments {
             let phi = TAU * j as f32 / segments as f32;
             let radius = major + minor * phi.cos();
-            positions.extend_from_slice(&[radius * theta.cos(), radius * theta.sin(), minor * phi.sin()]);
+            positions.extend_from_slice(&[
+                radius * theta.cos(),
+                radius * theta.sin(),
+                minor * phi.sin(),
+            ]);
         }
     }
     let v = |i: u32, j: u32| (i % rings) * segments + (j % segments);
@@ -42,7 +48,11 @@ pub fn torus(rings: u32, segments: u32, major: f32, minor: f32) -> PolyMesh {
             indices.extend_from_slice(&[v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    PolyMesh { positions, indices, face_sizes: vec![4; (rings * segments) as usize] }
+    PolyMesh {
+        positions,
+        indices,
+        face_sizes: vec![4; (rings * segments) as usize],
+    }
 }
 
 /// The same torus with every quad split into two triangles along its `v(i,j)–v(i+1,j+1)`
@@ -81,7 +91,11 @@ pub fn grid_with_hole(
         }
     }
     let faces = indices.len() / 4;
-    PolyMesh { positions, indices, face_sizes: vec![4; faces] }
+    PolyMesh {
+        positions,
+        indices,
+        face_sizes: vec![4; faces],
+    }
 }
 
 /// A closed prism over a regular `n`-gon: two `n`-gon caps and `n` quad sides.
@@ -102,7 +116,11 @@ pub fn prism(n: u32) -> PolyMesh {
         indices.extend_from_slice(&[k, k1, n + k1, n + k]);
         face_sizes.push(4);
     }
-    PolyMesh { positions, indices, face_sizes }
+    PolyMesh {
+        positions,
+        indices,
+        face_sizes,
+    }
 }
 
 /// Splits every quad `(a, b, c, d)` of `mesh` into `(a, b, c)` and `(a, c, d)`; other faces
@@ -112,7 +130,9 @@ pub fn triangulate_quads(mesh: &PolyMesh) -> PolyMesh {
     let mut face_sizes = Vec::with_capacity(mesh.face_sizes.len() * 2);
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
-        let Some(face) = mesh.indices.get(start..start + n as usize) else { break };
+        let Some(face) = mesh.indices.get(start..start + n as usize) else {
+            break;
+        };
         if let [a, b, c, d] = *face {
             indices.extend_from_slice(&[a, b, c, a, c, d]);
             face_sizes.extend_from_slice(&[3, 3]);
@@ -122,5 +142,9 @@ pub fn triangulate_quads(mesh: &PolyMesh) -> PolyMesh {
         }
         start += n as usize;
     }
-    PolyMesh { positions: mesh.positions.clone(), indices, face_sizes }
+    PolyMesh {
+        positions: mesh.positions.clone(),
+        indices,
+        face_sizes,
+    }
 }

@@ -9,7 +9,10 @@ use crate::mesh::PolyMesh;
 use std::fmt::Write as _;
 
 fn obj_error(line: usize, message: impl Into<String>) -> Error {
-    Error::Obj { line, message: message.into() }
+    Error::Obj {
+        line,
+        message: message.into(),
+    }
 }
 
 /// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, repeated vertices, NaN)
@@ -27,7 +30,10 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
                 let mut xyz = [0.0f32; 3];
                 for (k, slot) in xyz.iter_mut().enumerate() {
                     let word = words.next().ok_or_else(|| {
-                        obj_error(line_no, format!("vertex has {k} coordinates; 'v' needs x y z"))
+                        obj_error(
+                            line_no,
+                            format!("vertex has {k} coordinates; 'v' needs x y z"),
+                        )
                     })?;
                     *slot = parse_coordinate(word, line_no)?;
                 }
@@ -41,14 +47,20 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
                     if mesh.indices[start..].contains(&index) {
                         return Err(obj_error(
                             line_no,
-                            format!("face uses vertex {} twice; a face must not repeat a vertex", index + 1),
+                            format!(
+                                "face uses vertex {} twice; a face must not repeat a vertex",
+                                index + 1
+                            ),
                         ));
                     }
                     mesh.indices.push(index);
                 }
                 let n = mesh.indices.len() - start;
                 if n < 3 {
-                    return Err(obj_error(line_no, format!("face has {n} vertices; a face needs at least 3")));
+                    return Err(obj_error(
+                        line_no,
+                        format!("face has {n} vertices; a face needs at least 3"),
+                    ));
                 }
                 mesh.face_sizes.push(n as u32);
                 face_lines.push(line_no);
@@ -63,13 +75,19 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
         if let Some(&bad) = face.iter().find(|&&i| i as usize >= vertex_count) {
             return Err(obj_error(
                 face_lines[f],
-                format!("face refers to vertex {}, but the file has only {vertex_count} vertices", bad as u64 + 1),
+                format!(
+                    "face refers to vertex {}, but the file has only {vertex_count} vertices",
+                    bad as u64 + 1
+                ),
             ));
         }
         start += n as usize;
     }
     if vertex_count == 0 {
-        return Err(obj_error(text.lines().count().max(1), "the file has no 'v' lines; a mesh needs vertices"));
+        return Err(obj_error(
+            text.lines().count().max(1),
+            "the file has no 'v' lines; a mesh needs vertices",
+        ));
     }
     Ok(mesh)
 }
@@ -79,7 +97,10 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
         .parse()
         .map_err(|_| obj_error(line, format!("'{word}' is not a number")))?;
     if !value.is_finite() {
-        return Err(obj_error(line, format!("coordinate '{word}' is not a finite 32-bit number")));
+        return Err(obj_error(
+            line,
+            format!("coordinate '{word}' is not a finite 32-bit number"),
+        ));
     }
     Ok(value)
 }
@@ -91,7 +112,12 @@ fn parse_face_index(word: &str, vertex_count: usize, line: usize) -> Result<u32>
         .parse()
         .map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
     let resolved = match value {
-        0 => return Err(obj_error(line, "face index 0 is not allowed; OBJ indices start at 1")),
+        0 => {
+            return Err(obj_error(
+                line,
+                "face index 0 is not allowed; OBJ indices start at 1",
+            ))
+        }
         v if v > 0 => v - 1,
         v => {
             let r = vertex_count as i64 + v;
@@ -118,7 +144,9 @@ pub fn write_obj(mesh: &PolyMesh) -> String {
     }
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
-        let Some(face) = mesh.indices.get(start..start + n as usize) else { break };
+        let Some(face) = mesh.indices.get(start..start + n as usize) else {
+            break;
+        };
         out.push('f');
         for &i in face {
             let _ = write!(out, " {}", i as u64 + 1);

@@ -8,44 +8,57 @@ use crate::error::{Error, Result};
 /// arithmetic (`4h + 3`, `2E + h`) still fit in `u32` without checks in the hot loops.
 pub(crate) const MAX_HALF_EDGES: usize = (u32::MAX / 8) as usize;
 
-pub(super) fn from_faces(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<HalfEdgeMesh> {
+pub(super) fn from_faces(
+    positions: &[f32],
+    indices: &[u32],
+    face_sizes: &[u32],
+) -> Result<HalfEdgeMesh> {
     validate(positions, indices, face_sizes)?;
     let num_vertices = positions.len() / 3;
     let num_half_edges = indices.len();
 
     let mut cell_offsets = Vec::with_capacity(face_sizes.len() + 1);
     let mut he_cell = Vec::with_capacity(num_half_edges);
-    let mut total = 0u32;
+    let mut he_to = Vec::with_capacity(num_half_edges);
+    let mut total = 0usize;
     cell_offsets.push(0);
     for (c, &n) in face_sizes.iter().enumerate() {
-        total += n;
-        cell_offsets.push(total);
+        let corners = &indices[total..total + n as usize];
+        he_to.extend_from_slice(&corners[1..]);
+        he_to.push(corners[0]);
         he_cell.extend(std::iter::repeat_n(c as u32, n as usize));
+        total += n as usize;
+        cell_offsets.push(total as u32);
     }
 
     let mut mesh = HalfEdgeMesh {
-        positions: positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+        positions: positions
+            .chunks_exact(3)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect(),
         cell_offsets,
         he_from: indices.to_vec(),
         he_cell,
         ..HalfEdgeMesh::default()
     };
-    let he_to: Vec<u32> = (0..num_half_edges as u32).map(|h| mesh.to_vertex(h)).collect();
-    build_vertex_half_edges(&mut mesh, &he_to, num_vertices);
-    build_edges(&mut mesh, &he_to);
+    let out_to = build_vertex_half_edges(&mut mesh, &he_to, num_vertices);
+    drop(he_to);
+    build_edges(&mut mesh, &out_to);
     put_boundary_half_edges_first(&mut mesh);
     Ok(mesh)
 }
 
 fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {
-    if positions.len() % 3 != 0 {
+    if !positions.len().is_multiple_of(3) {
         return Err(Error::mesh(format!(
             "positions has {} numbers, which is not a multiple of 3; give x, y, z for every vertex",
             positions.len()
         )));
     }
     if positions.is_empty() {
-        return Err(Error::mesh("positions is empty; a mesh needs at least one vertex"));
+        return Err(Error::mesh(
+            "positions is empty; a mesh needs at least one vertex",
+        ));
     }
     if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
         return Err(Error::mesh(format!(
@@ -103,9 +116,15 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     Ok(())
 }
 
-/// Fills `vertex_offsets`/`vertex_half_edges` by a counting sort on the from-vertex, then sorts
-/// each vertex's run by to-vertex so that the half-edges of one vertex pair are adjacent.
-fn build_vertex_half_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], num_vertices: usize) {
+/// Fills `vertex_offsets`/`vertex_half_edges` by a counting sort on the from-vertex, each
+/// vertex's run sorted by to-vertex so that the half-edges of one vertex pair are adjacent.
+/// Returns the to-vertex of every list entry, a parallel array that keeps the edge search
+/// below on contiguous memory.
+fn build_vertex_half_edges(
+    mesh: &mut HalfEdgeMesh,
+    he_to: &[u32],
+    num_vertices: usize,
+) -> Vec<u32> {
     let mut offsets = vec![0u32; num_vertices + 1];
     for &v in &mesh.he_from {
         offsets[v as usize + 1] += 1;
@@ -114,80 +133,101 @@ fn build_vertex_half_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], num_vertices:
         offsets[v + 1] += offsets[v];
     }
     let mut fill = offsets.clone();
-    let mut list = vec![0u32; mesh.he_from.len()];
+    let mut keys = vec![0u64; mesh.he_from.len()];
     for (h, &v) in mesh.he_from.iter().enumerate() {
-        list[fill[v as usize] as usize] = h as u32;
+        keys[fill[v as usize] as usize] = ((he_to[h] as u64) << 32) | h as u64;
         fill[v as usize] += 1;
     }
+    drop(fill);
     for v in 0..num_vertices {
-        let run = &mut list[offsets[v] as usize..offsets[v + 1] as usize];
-        run.sort_unstable_by_key(|&h| ((he_to[h as usize] as u64) << 32) | h as u64);
+        keys[offsets[v] as usize..offsets[v + 1] as usize].sort_unstable();
     }
     mesh.vertex_offsets = offsets;
-    mesh.vertex_half_edges = list;
+    mesh.vertex_half_edges = keys.iter().map(|&k| k as u32).collect();
+    keys.iter().map(|&k| (k >> 32) as u32).collect()
 }
 
-/// The half-edges from `a` to `b`, a contiguous run of `a`'s to-sorted list.
-fn run_to<'a>(mesh: &'a HalfEdgeMesh, he_to: &[u32], a: u32, b: u32) -> &'a [u32] {
-    let out = mesh.out_half_edges(a);
-    let start = out.partition_point(|&h| he_to[h as usize] < b);
-    let len = out[start..].partition_point(|&h| he_to[h as usize] == b);
-    &out[start..start + len]
+/// For each run of half-edges `a → b` in `a`'s list: the run `b → a` in `b`'s list (as a range
+/// of list positions), found by binary search on the parallel to-vertex array.
+fn opposite_run(mesh: &HalfEdgeMesh, out_to: &[u32], a: u32, b: u32) -> std::ops::Range<usize> {
+    let start = mesh.vertex_offsets[b as usize] as usize;
+    let end = mesh.vertex_offsets[b as usize + 1] as usize;
+    let tos = &out_to[start..end];
+    let first = tos.partition_point(|&t| t < a);
+    let len = tos[first..].partition_point(|&t| t == a);
+    start + first..start + first + len
 }
 
-/// Numbers edges in order of their lowest half-edge and lists each edge's half-edges in
-/// ascending order, so the first is the lowest.
-fn build_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32]) {
+/// Calls `visit(a, b, run_ab, run_ba)` for every maximal run of half-edges `a → b`, with both
+/// runs as ranges into `vertex_half_edges`, when the run holds the edge's lowest half-edge.
+/// Each edge is visited exactly once, by the vertex that owns it.
+fn for_each_owned_edge(
+    mesh: &HalfEdgeMesh,
+    out_to: &[u32],
+    mut visit: impl FnMut(u32, u32, std::ops::Range<usize>, std::ops::Range<usize>),
+) {
+    for a in 0..mesh.num_vertices() {
+        let end = mesh.vertex_offsets[a + 1] as usize;
+        let mut i = mesh.vertex_offsets[a] as usize;
+        while i < end {
+            let b = out_to[i];
+            let run_end = i + out_to[i..end].partition_point(|&t| t == b);
+            let opposite = opposite_run(mesh, out_to, a as u32, b);
+            let lowest_here = mesh.vertex_half_edges[i];
+            let owned = opposite.is_empty() || mesh.vertex_half_edges[opposite.start] > lowest_here;
+            if owned {
+                visit(a as u32, b, i..run_end, opposite);
+            }
+            i = run_end;
+        }
+    }
+}
+
+/// Numbers edges in the order their owning vertices are visited (by owner vertex, then by the
+/// other vertex) and lists each edge's half-edges in ascending order, so the first is the lowest.
+fn build_edges(mesh: &mut HalfEdgeMesh, out_to: &[u32]) {
     let num_half_edges = mesh.he_from.len();
-    // Pass 1: each half-edge finds the lowest half-edge on its vertex pair (the edge's owner).
-    let mut owner = vec![0u32; num_half_edges];
-    for (h, slot) in owner.iter_mut().enumerate() {
-        let (a, b) = (mesh.he_from[h], he_to[h]);
-        // The forward run contains `h` itself, so it is never empty.
-        let forward = run_to(mesh, he_to, a, b)[0];
-        let backward = run_to(mesh, he_to, b, a).first().copied().unwrap_or(u32::MAX);
-        *slot = forward.min(backward);
-    }
-    // Pass 2: edge ids in owner order.
-    let mut edge_of_owner = vec![u32::MAX; num_half_edges];
-    let mut edge_vertices = Vec::new();
-    for h in 0..num_half_edges {
-        if owner[h] == h as u32 {
-            edge_of_owner[h] = edge_vertices.len() as u32;
-            edge_vertices.push([mesh.he_from[h], he_to[h]]);
+    let mut edge_vertices = Vec::with_capacity(num_half_edges / 2 + 1);
+    let mut edge_offsets = Vec::with_capacity(num_half_edges / 2 + 2);
+    edge_offsets.push(0u32);
+    let mut edge_half_edges = vec![0u32; num_half_edges];
+    let mut he_edge = vec![0u32; num_half_edges];
+    let mut he_next_around_edge = vec![0u32; num_half_edges];
+    let mut filled = 0usize;
+    for_each_owned_edge(mesh, out_to, |a, b, run, opposite| {
+        let e = edge_vertices.len() as u32;
+        edge_vertices.push([a, b]);
+        let list = &mut edge_half_edges[filled..filled + run.len() + opposite.len()];
+        filled += list.len();
+        edge_offsets.push(filled as u32);
+        merge_sorted(
+            &mesh.vertex_half_edges[run],
+            &mesh.vertex_half_edges[opposite],
+            list,
+        );
+        for (i, &h) in list.iter().enumerate() {
+            he_edge[h as usize] = e;
+            he_next_around_edge[h as usize] = list[(i + 1) % list.len()];
         }
-    }
-    let num_edges = edge_vertices.len();
-    let he_edge: Vec<u32> = owner.iter().map(|&o| edge_of_owner[o as usize]).collect();
-    drop(edge_of_owner);
-    drop(owner);
-
-    // Pass 3: edge -> half-edges, a stable counting sort keeping ascending half-edge order.
-    let mut offsets = vec![0u32; num_edges + 1];
-    for &e in &he_edge {
-        offsets[e as usize + 1] += 1;
-    }
-    for e in 0..num_edges {
-        offsets[e + 1] += offsets[e];
-    }
-    let mut fill = offsets.clone();
-    let mut list = vec![0u32; num_half_edges];
-    for (h, &e) in he_edge.iter().enumerate() {
-        list[fill[e as usize] as usize] = h as u32;
-        fill[e as usize] += 1;
-    }
-    let mut next_around = vec![0u32; num_half_edges];
-    for e in 0..num_edges {
-        let run = &list[offsets[e] as usize..offsets[e + 1] as usize];
-        for (i, &h) in run.iter().enumerate() {
-            next_around[h as usize] = run[(i + 1) % run.len()];
-        }
-    }
+    });
     mesh.he_edge = he_edge;
-    mesh.he_next_around_edge = next_around;
+    mesh.he_next_around_edge = he_next_around_edge;
     mesh.edge_vertices = edge_vertices;
-    mesh.edge_offsets = offsets;
-    mesh.edge_half_edges = list;
+    mesh.edge_offsets = edge_offsets;
+    mesh.edge_half_edges = edge_half_edges;
+}
+
+fn merge_sorted(a: &[u32], b: &[u32], out: &mut [u32]) {
+    let (mut i, mut j) = (0, 0);
+    for slot in out.iter_mut() {
+        if j >= b.len() || (i < a.len() && a[i] < b[j]) {
+            *slot = a[i];
+            i += 1;
+        } else {
+            *slot = b[j];
+            j += 1;
+        }
+    }
 }
 
 /// The seed's contract: `kth_half_edge_from(0)` is a boundary half-edge when the vertex has one.

@@ -87,15 +87,24 @@ impl HalfEdgeMesh {
     }
 
     pub fn vertex(&self, v: u32) -> Option<VertexRef<'_>> {
-        ((v as usize) < self.num_vertices()).then_some(VertexRef { mesh: self, index: v })
+        ((v as usize) < self.num_vertices()).then_some(VertexRef {
+            mesh: self,
+            index: v,
+        })
     }
 
     pub fn half_edge(&self, h: u32) -> Option<HalfEdgeRef<'_>> {
-        ((h as usize) < self.num_half_edges()).then_some(HalfEdgeRef { mesh: self, index: h })
+        ((h as usize) < self.num_half_edges()).then_some(HalfEdgeRef {
+            mesh: self,
+            index: h,
+        })
     }
 
     pub fn cell(&self, c: u32) -> Option<CellRef<'_>> {
-        ((c as usize) < self.num_cells()).then_some(CellRef { mesh: self, index: c })
+        ((c as usize) < self.num_cells()).then_some(CellRef {
+            mesh: self,
+            index: c,
+        })
     }
 
     pub fn vertex_indices(&self) -> std::ops::Range<u32> {
@@ -149,7 +158,8 @@ impl HalfEdgeMesh {
     /// Adds `count` vertices at the origin and returns the index of the first.
     pub fn add_vertices(&mut self, count: u32) -> u32 {
         let first = self.num_vertices() as u32;
-        self.positions.resize(first as usize + count as usize, [0.0; 3]);
+        self.positions
+            .resize(first as usize + count as usize, [0.0; 3]);
         let total = *self.vertex_offsets.last().unwrap_or(&0);
         if self.vertex_offsets.is_empty() {
             self.vertex_offsets.push(0);
@@ -175,7 +185,9 @@ impl HalfEdgeMesh {
         }
         let n = self.num_vertices();
         let slot = self.positions.get_mut(v as usize).ok_or_else(|| {
-            crate::Error::mesh(format!("vertex {v} does not exist; the mesh has {n} vertices"))
+            crate::Error::mesh(format!(
+                "vertex {v} does not exist; the mesh has {n} vertices"
+            ))
         })?;
         *slot = coord;
         Ok(())
@@ -202,10 +214,15 @@ impl HalfEdgeMesh {
         for e in 0..self.num_edges() {
             let hs = &self.edge_half_edges
                 [self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize];
-            let bad = hs.len() > 2 || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize]);
+            let bad = hs.len() > 2
+                || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize]);
             if bad {
                 let [from, to] = self.edge_vertices[e];
-                return Some(NonManifold::Edge { edge: e as u32, from, to });
+                return Some(NonManifold::Edge {
+                    edge: e as u32,
+                    from,
+                    to,
+                });
             }
         }
         (0..self.num_vertices() as u32)
@@ -216,7 +233,9 @@ impl HalfEdgeMesh {
     /// True when the faces around `v` form one fan (assuming manifold edges).
     fn is_single_fan(&self, v: u32) -> bool {
         let out = self.out_half_edges(v);
-        let Some(&start) = out.first() else { return true };
+        let Some(&start) = out.first() else {
+            return true;
+        };
         let mut h = start;
         let mut visited = 1usize;
         loop {
@@ -239,7 +258,8 @@ impl HalfEdgeMesh {
     #[inline]
     pub(crate) fn out_half_edges(&self, v: u32) -> &[u32] {
         let v = v as usize;
-        &self.vertex_half_edges[self.vertex_offsets[v] as usize..self.vertex_offsets[v + 1] as usize]
+        &self.vertex_half_edges
+            [self.vertex_offsets[v] as usize..self.vertex_offsets[v + 1] as usize]
     }
 
     #[inline]

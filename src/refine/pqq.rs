@@ -22,13 +22,23 @@ use crate::rules::QuadSplitRules;
 /// Child vertex, edge, half-edge and cell counts of one PQQ level, in `u64` so that a guard can
 /// compare them before anything is allocated.
 pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [u64; 4] {
-    [vertices + cells + edges, 2 * edges + half_edges, 4 * half_edges, half_edges]
+    [
+        vertices + cells + edges,
+        2 * edges + half_edges,
+        4 * half_edges,
+        half_edges,
+    ]
 }
 
-/// New positions in child vertex order, computed by the host's stencil policy `rules`.
-pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
-    let (v, f, e) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
-    let mut points = vec![[0.0f32; 3]; v + f + e];
+/// Number of child vertices: `V + F + E`.
+pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
+    mesh.num_vertices() + mesh.num_cells() + mesh.num_edges()
+}
+
+/// Writes the new positions, in child vertex order, into `points` (of length
+/// [`num_child_vertices`]), computed by the host's stencil policy `rules`.
+pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R, points: &mut [[f32; 3]]) {
+    let (v, f) = (mesh.num_vertices(), mesh.num_cells());
     let (vertex_points, rest) = points.split_at_mut(v);
     let (face_points, edge_points) = rest.split_at_mut(f);
     for (c, p) in face_points.iter_mut().enumerate() {
@@ -41,7 +51,6 @@ pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[
     for (i, p) in vertex_points.iter_mut().enumerate() {
         *p = rules.vertex_point(mesh, face_points, i as u32).to_array();
     }
-    points
 }
 
 /// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
@@ -97,7 +106,12 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         let p = mesh.prev_in_cell(h);
         let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
         he_cell[hs.clone()].fill(h);
-        he_edge[hs.clone()].copy_from_slice(&[half_at(e, a), 2 * ne + h, 2 * ne + p, half_at(d, a)]);
+        he_edge[hs.clone()].copy_from_slice(&[
+            half_at(e, a),
+            2 * ne + h,
+            2 * ne + p,
+            half_at(d, a),
+        ]);
         he_next_around_edge[hs].copy_from_slice(&[
             child_at(mesh.he_next_around_edge[h as usize], a),
             4 * mesh.next_in_cell(h) + 2,

@@ -37,6 +37,8 @@ pub(crate) fn vec3(p: [f32; 3]) -> Vec3 {
 pub(crate) fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
     let c = cell as usize;
     let corners = &mesh.he_from[mesh.cell_offsets[c] as usize..mesh.cell_offsets[c + 1] as usize];
-    let sum = corners.iter().fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
+    let sum = corners
+        .iter()
+        .fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
     sum / corners.len() as f32
 }

@@ -1,0 +1,509 @@
+//! The JavaScript API: typed arrays in, typed arrays out, a thrown `Error` with a message.
+//!
+//! This layer only converts and checks. Every input is read through calls that cannot throw into
+//! Rust (`Reflect` with `catch`) and copied into Rust-owned vectors, so the caller's arrays are
+//! never written and no view of wasm memory ever escapes (it would go stale when memory grows).
+//! Every failure is a `Result`: a panic would abort the module instance and break every later
+//! call on the page.
+//!
+//! ```js
+//! import init, { subdivide } from 'subsurf';
+//! await init();
+//! const out = subdivide({ positions, indices, faceSizes }, { levels: 2 });
+//! gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, out.triangles, gl.STATIC_DRAW);
+//! ```
+
+use crate::error::Error;
+use crate::io;
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::scheme::{self, Boundary, Options, Scheme};
+use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TYPESCRIPT_TYPES: &'static str = r#"
+/** Names accepted by `SubdivideOptions.scheme`. */
+export type SchemeName = 'catmull-clark';
+
+/** Names accepted by `SubdivideOptions.boundary`. */
+export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average';
+
+/** A polygon mesh as flat typed arrays. The arrays are only read, never modified. */
+export interface SubdivideMesh {
+  /** x, y, z of each vertex. */
+  positions: Float32Array;
+  /** The vertex indices of every face, face after face, counter-clockwise seen from outside. */
+  indices: Uint32Array;
+  /** How many indices each face uses. Omitted: every face is a triangle. */
+  faceSizes?: Uint32Array;
+  /** Ignored, so that a `SubdivideResult` can be subdivided again. */
+  triangles?: Uint32Array;
+}
+
+/** How to subdivide. Every field is optional. */
+export interface SubdivideOptions {
+  /** One scheme for every level, or one per level. Default 'catmull-clark'. */
+  scheme?: SchemeName | SchemeName[];
+  /** Number of levels, a whole number from 0 to 32. Default 1, or the length of a `scheme` array. */
+  levels?: number;
+  /** What happens at boundary edges and vertices. Default 'edge-and-corner'. */
+  boundary?: BoundaryRule;
+  /** Refuse, before any work, when the result would have more faces than this. Default 16777216. */
+  maxFaces?: number;
+}
+
+/** A polygon mesh as `readObj` returns it. */
+export interface PolygonMesh {
+  positions: Float32Array;
+  indices: Uint32Array;
+  faceSizes: Uint32Array;
+}
+
+/** The refined mesh: fresh arrays owned by the caller. */
+export interface SubdivideResult extends PolygonMesh {
+  /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */
+  triangles: Uint32Array;
+}
+"#;
+
+/// Option keys, in the order error messages list them. Must match the fields of [`OptionsInput`].
+const OPTION_KEYS: [&str; 4] = ["scheme", "levels", "boundary", "maxFaces"];
+
+/// Mesh fields read from the input object.
+const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
+
+/// Mesh fields accepted and ignored: the extra output of `subdivide`.
+const IGNORED_MESH_KEYS: [&str; 1] = ["triangles"];
+
+/// The most levels one call accepts. Far beyond any `maxFaces` for a real mesh (every level
+/// multiplies the face count by about 4), it only bounds the work on faceless inputs.
+pub const MAX_LEVELS: u32 = 32;
+
+/// `Number.MAX_SAFE_INTEGER`: the largest whole number a JS number holds exactly.
+const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
+
+type JsResult<T> = Result<T, JsError>;
+
+fn js_error(error: Error) -> JsError {
+    JsError::new(&error.to_string())
+}
+
+/// Subdivides a polygon mesh and returns the refined mesh as fresh typed arrays.
+///
+/// `mesh.faceSizes` may be omitted when every face is a triangle. Throws an `Error` whose
+/// message says what is wrong (an unknown option, a wrong array type, an index out of range, a
+/// result larger than `maxFaces`, ...); the module stays usable after an error.
+#[wasm_bindgen(js_name = subdivide, unchecked_return_type = "SubdivideResult")]
+pub fn subdivide(
+    #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
+) -> JsResult<JsValue> {
+    let options = read_options(options).map_err(js_error)?;
+    let mesh = read_mesh(mesh).map_err(js_error)?;
+    let refined = scheme::subdivide(&mesh, &options).map_err(js_error)?;
+    let triangles = refined.triangles();
+    mesh_object(&refined, Some(&triangles))
+}
+
+/// Parses the text of a Wavefront OBJ file (`v` and `f` lines; everything else is skipped).
+#[wasm_bindgen(js_name = readObj, unchecked_return_type = "PolygonMesh")]
+pub fn read_obj(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: &JsValue,
+) -> JsResult<JsValue> {
+    let text = text.as_string().ok_or_else(|| {
+        JsError::new(&format!(
+            "readObj expects the text of an OBJ file as a string, got {}; read the file with \
+             await file.text() or fs.readFileSync(path, 'utf8')",
+            describe(text)
+        ))
+    })?;
+    let mesh = io::read_obj(&text).map_err(js_error)?;
+    mesh_object(&mesh, None)
+}
+
+/// Writes a polygon mesh as Wavefront OBJ text (`v` and `f` lines, 1-based indices).
+#[wasm_bindgen(js_name = writeObj)]
+pub fn write_obj(
+    #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
+) -> JsResult<String> {
+    let mesh = read_mesh(mesh).map_err(js_error)?;
+    // The library's mesh builder is the one place that knows what a valid mesh is; running it
+    // here keeps a bad index from turning into an OBJ file no reader accepts.
+    HalfEdgeMesh::from_poly(&mesh).map_err(js_error)?;
+    Ok(io::write_obj(&mesh))
+}
+
+/// The version of the subsurf package.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Options
+
+/// The options object as serde reads it. Each field is kept as the raw JS value so that the
+/// checks below can name the field and show the value that was given; serde alone would say
+/// "invalid type: string, expected u32" without saying which option.
+///
+/// `deny_unknown_fields` does not fire here: serde-wasm-bindgen reads a struct by asking the
+/// object for each known field, so it never sees the others. [`check_keys`] catches those.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "camelCase")]
+struct OptionsInput {
+    #[serde(default, with = "serde_wasm_bindgen::preserve")]
+    scheme: JsValue,
+    #[serde(default, with = "serde_wasm_bindgen::preserve")]
+    levels: JsValue,
+    #[serde(default, with = "serde_wasm_bindgen::preserve")]
+    boundary: JsValue,
+    #[serde(default, with = "serde_wasm_bindgen::preserve")]
+    max_faces: JsValue,
+}
+
+fn option_error(message: String) -> Error {
+    Error::InvalidOption(message)
+}
+
+fn read_options(value: &JsValue) -> Result<Options, Error> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(Options::default());
+    }
+    if !value.is_object() || Array::is_array(value) {
+        return Err(option_error(format!(
+            "options must be an object such as {{ levels: 2 }}, got {}",
+            describe(value)
+        )));
+    }
+    check_keys(value, &OPTION_KEYS, &[], "option", "options").map_err(option_error)?;
+    let input: OptionsInput = serde_wasm_bindgen::from_value(value.clone())
+        .map_err(|e| option_error(format!("could not read options: {e}")))?;
+
+    let levels = read_levels(&input.levels)?;
+    let schemes = match read_schemes(&input.scheme)? {
+        SchemeChoice::Default => vec![Scheme::default(); levels.unwrap_or(1) as usize],
+        SchemeChoice::One(scheme) => vec![scheme; levels.unwrap_or(1) as usize],
+        SchemeChoice::PerLevel(list) => {
+            if let Some(levels) = levels {
+                if levels as usize != list.len() {
+                    return Err(option_error(format!(
+                        "scheme lists {} schemes (one per level) but levels is {levels}; \
+                         drop levels or make the two agree",
+                        list.len()
+                    )));
+                }
+            }
+            list
+        }
+    };
+    let boundary = read_boundary(&input.boundary)?;
+    let max_faces = read_max_faces(&input.max_faces)?;
+    let defaults = Options::default();
+    Ok(Options {
+        schemes,
+        boundary: boundary.unwrap_or(defaults.boundary),
+        max_faces: max_faces.unwrap_or(defaults.max_faces),
+    })
+}
+
+fn read_levels(value: &JsValue) -> Result<Option<u32>, Error> {
+    if value.is_undefined() {
+        return Ok(None);
+    }
+    match value.as_f64() {
+        Some(x) if x.fract() == 0.0 && (0.0..=MAX_LEVELS as f64).contains(&x) => Ok(Some(x as u32)),
+        _ => Err(option_error(format!(
+            "levels must be a whole number from 0 to {MAX_LEVELS}, got {}",
+            describe(value)
+        ))),
+    }
+}
+
+fn read_max_faces(value: &JsValue) -> Result<Option<u64>, Error> {
+    if value.is_undefined() {
+        return Ok(None);
+    }
+    match value.as_f64() {
+        Some(x) if x.fract() == 0.0 && (1.0..=MAX_SAFE_INTEGER).contains(&x) => Ok(Some(x as u64)),
+        _ => Err(option_error(format!(
+            "maxFaces must be a whole number from 1 to Number.MAX_SAFE_INTEGER, got {}",
+            describe(value)
+        ))),
+    }
+}
+
+fn read_boundary(value: &JsValue) -> Result<Option<Boundary>, Error> {
+    if value.is_undefined() {
+        return Ok(None);
+    }
+    match value.as_string() {
+        Some(name) => name.parse().map(Some),
+        None => Err(option_error(format!(
+            "boundary must be one of {}, got {}",
+            quoted_list(Boundary::ALL.iter().map(|b| b.name())),
+            describe(value)
+        ))),
+    }
+}
+
+enum SchemeChoice {
+    Default,
+    One(Scheme),
+    PerLevel(Vec<Scheme>),
+}
+
+fn read_schemes(value: &JsValue) -> Result<SchemeChoice, Error> {
+    if value.is_undefined() {
+        return Ok(SchemeChoice::Default);
+    }
+    if let Some(name) = value.as_string() {
+        return name.parse().map(SchemeChoice::One);
+    }
+    if let Some(list) = value.dyn_ref::<Array>() {
+        if list.length() > MAX_LEVELS {
+            return Err(option_error(format!(
+                "scheme lists {} schemes, one per level; at most {MAX_LEVELS} levels are allowed",
+                list.length()
+            )));
+        }
+        let mut schemes = Vec::with_capacity(list.length() as usize);
+        for (i, item) in list.iter().enumerate() {
+            let scheme = match item.as_string() {
+                Some(name) => name.parse().map_err(|e| match e {
+                    Error::InvalidOption(m) => option_error(format!("scheme[{i}]: {m}")),
+                    other => other,
+                })?,
+                None => {
+                    return Err(option_error(format!(
+                        "scheme[{i}] must be a scheme name such as '{}', got {}",
+                        Scheme::default().name(),
+                        describe(&item)
+                    )))
+                }
+            };
+            schemes.push(scheme);
+        }
+        return Ok(SchemeChoice::PerLevel(schemes));
+    }
+    Err(option_error(format!(
+        "scheme must be one of {} or an array of them (one per level), got {}",
+        quoted_list(Scheme::ALL.iter().map(|s| s.name())),
+        describe(value)
+    )))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes
+
+fn mesh_error(message: String) -> Error {
+    Error::InvalidMesh(message)
+}
+
+/// Copies the caller's typed arrays into a [`PolyMesh`].
+fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
+    if !value.is_object() || Array::is_array(value) {
+        return Err(mesh_error(format!(
+            "mesh must be an object {{ positions: Float32Array, indices: Uint32Array, \
+             faceSizes?: Uint32Array }}, got {}",
+            describe(value)
+        )));
+    }
+    check_keys(
+        value,
+        &MESH_KEYS,
+        &IGNORED_MESH_KEYS,
+        "mesh field",
+        "mesh fields",
+    )
+    .map_err(mesh_error)?;
+
+    let positions = get(value, "positions")?;
+    let positions = match positions.dyn_ref::<Float32Array>() {
+        Some(array) => array.to_vec(),
+        None => return Err(wrong_array_type("positions", "Float32Array", &positions)),
+    };
+    let indices = get(value, "indices")?;
+    let indices = match indices.dyn_ref::<Uint32Array>() {
+        Some(array) => array.to_vec(),
+        None => return Err(wrong_array_type("indices", "Uint32Array", &indices)),
+    };
+    let face_sizes = get(value, "faceSizes")?;
+    let face_sizes = if face_sizes.is_undefined() || face_sizes.is_null() {
+        if indices.len() % 3 != 0 {
+            return Err(mesh_error(format!(
+                "mesh.indices has {} entries, which is not a multiple of 3; without \
+                 mesh.faceSizes every face is a triangle, so give faceSizes for other polygons",
+                indices.len()
+            )));
+        }
+        vec![3; indices.len() / 3]
+    } else {
+        match face_sizes.dyn_ref::<Uint32Array>() {
+            Some(array) => array.to_vec(),
+            None => return Err(wrong_array_type("faceSizes", "Uint32Array", &face_sizes)),
+        }
+    };
+    Ok(PolyMesh {
+        positions,
+        indices,
+        face_sizes,
+    })
+}
+
+fn get(object: &JsValue, key: &str) -> Result<JsValue, Error> {
+    Reflect::get(object, &JsValue::from_str(key))
+        .map_err(|e| mesh_error(format!("reading mesh.{key} threw {}", describe(&e))))
+}
+
+fn wrong_array_type(field: &str, expected: &str, got: &JsValue) -> Error {
+    if got.is_undefined() {
+        return mesh_error(format!("mesh.{field} is missing; it must be a {expected}"));
+    }
+    let hint = if Array::is_array(got) || is_typed_array(got) {
+        format!("; convert it with new {expected}(array)")
+    } else {
+        String::new()
+    };
+    mesh_error(format!(
+        "mesh.{field} must be a {expected}, got {}{hint}",
+        describe(got)
+    ))
+}
+
+fn is_typed_array(value: &JsValue) -> bool {
+    js_sys::ArrayBuffer::is_view(value) && !value.is_instance_of::<js_sys::DataView>()
+}
+
+/// A plain object of fresh typed arrays (copies, never views of wasm memory).
+fn mesh_object(mesh: &PolyMesh, triangles: Option<&[u32]>) -> JsResult<JsValue> {
+    let object = Object::new();
+    let set = |key: &str, value: JsValue| {
+        Reflect::set(&object, &JsValue::from_str(key), &value)
+            .map(|_| ())
+            .map_err(|_| JsError::new(&format!("could not set result field {key}")))
+    };
+    set("positions", Float32Array::from(&mesh.positions[..]).into())?;
+    set("indices", Uint32Array::from(&mesh.indices[..]).into())?;
+    set("faceSizes", Uint32Array::from(&mesh.face_sizes[..]).into())?;
+    if let Some(triangles) = triangles {
+        set("triangles", Uint32Array::from(triangles).into())?;
+    }
+    Ok(object.into())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Messages
+
+/// Rejects own string keys of `object` outside `allowed` and `ignored`, naming the closest
+/// allowed one when it looks like a typo.
+fn check_keys(
+    object: &JsValue,
+    allowed: &[&str],
+    ignored: &[&str],
+    what: &str,
+    what_plural: &str,
+) -> Result<(), String> {
+    let keys = Reflect::own_keys(object)
+        .map_err(|e| format!("listing the {what_plural} threw {}", describe(&e)))?;
+    for key in keys.iter() {
+        let Some(key) = key.as_string() else { continue };
+        if allowed.contains(&key.as_str()) || ignored.contains(&key.as_str()) {
+            continue;
+        }
+        let suggestion = closest(&key, allowed)
+            .map(|k| format!(" (did you mean '{k}'?)"))
+            .unwrap_or_default();
+        return Err(format!(
+            "unknown {what} '{key}'{suggestion}; allowed {what_plural} are {}",
+            quoted_list(allowed.iter().copied())
+        ));
+    }
+    Ok(())
+}
+
+/// The allowed key within edit distance 2 of `key`, ignoring case, if there is one.
+fn closest<'a>(key: &str, allowed: &[&'a str]) -> Option<&'a str> {
+    let key = key.to_lowercase();
+    allowed
+        .iter()
+        .map(|&a| (edit_distance(&key, &a.to_lowercase()), a))
+        .filter(|&(d, _)| d <= 2)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, a)| a)
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
+fn quoted_list<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    names
+        .map(|n| format!("'{n}'"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A short description of a JS value for error messages: `undefined`, `-1`, `string '2'`,
+/// `Float32Array`, `Array`, `object`.
+fn describe(value: &JsValue) -> String {
+    if value.is_undefined() {
+        return "undefined".into();
+    }
+    if value.is_null() {
+        return "null".into();
+    }
+    if let Some(b) = value.as_bool() {
+        return format!("boolean {b}");
+    }
+    if let Some(x) = value.as_f64() {
+        return if x.is_nan() {
+            "NaN".into()
+        } else if x.is_infinite() {
+            if x > 0.0 { "Infinity" } else { "-Infinity" }.into()
+        } else {
+            format!("{x}")
+        };
+    }
+    if let Some(s) = value.as_string() {
+        let shown: String = s.chars().take(40).collect();
+        let ellipsis = if shown.len() < s.len() { "..." } else { "" };
+        return format!("string '{shown}{ellipsis}'");
+    }
+    if value.is_bigint() {
+        return "bigint".into();
+    }
+    if value.is_symbol() {
+        return "symbol".into();
+    }
+    if value.is_function() {
+        return "function".into();
+    }
+    if let Some(error) = value.dyn_ref::<js_sys::Error>() {
+        return format!("Error '{}'", String::from(error.message()));
+    }
+    constructor_name(value).unwrap_or_else(|| "object".into())
+}
+
+fn constructor_name(value: &JsValue) -> Option<String> {
+    let constructor = Reflect::get(value, &JsValue::from_str("constructor")).ok()?;
+    if !constructor.is_function() {
+        return None;
+    }
+    Reflect::get(&constructor, &JsValue::from_str("name"))
+        .ok()?
+        .as_string()
+        .filter(|name| !name.is_empty())
+}
