@@ -12,11 +12,17 @@ pub fn euler_characteristic(mesh: &PolyMesh) -> i64 {
 /// Number of boundary half-edges.
 pub fn boundary_half_edges(mesh: &PolyMesh) -> usize {
     let he = HalfEdgeMesh::from_poly(mesh).expect("valid mesh");
-    he.half_edge_indices().filter(|&h| he.half_edge(h).unwrap().is_boundary()).count()
+    he.half_edge_indices()
+        .filter(|&h| he.half_edge(h).unwrap().is_boundary())
+        .count()
 }
 
 pub fn position(mesh: &PolyMesh, v: usize) -> [f32; 3] {
-    [mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]]
+    [
+        mesh.positions[3 * v],
+        mesh.positions[3 * v + 1],
+        mesh.positions[3 * v + 2],
+    ]
 }
 
 pub fn distance(a: [f32; 3], b: [f32; 3]) -> f32 {
