@@ -2,8 +2,11 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::refine::pqq;
-use crate::rules::CatmullClark;
+use crate::refine::dqq::{self, DualBoundary};
+use crate::refine::{pqq, ptq};
+use crate::rules::{
+    Bilinear, CatmullClark, DooSabin, Loop, Midpoint, QuadSplitRules, TriSplitRules,
+};
 use serde::Deserialize;
 use std::fmt;
 use std::str::FromStr;
@@ -15,15 +18,43 @@ pub enum Scheme {
     /// Catmull-Clark: any polygons in, quads out.
     #[default]
     CatmullClark,
+    /// Loop: triangles in, triangles out.
+    Loop,
+    /// Doo-Sabin: the dual quadratic scheme; any polygons.
+    DooSabin,
+    /// Bilinear: the quad split with centroids and midpoints; any polygons.
+    Bilinear,
+    /// Midpoint: the triangle split with midpoints; triangles only.
+    Midpoint,
 }
 
 impl Scheme {
-    pub const ALL: &'static [Scheme] = &[Scheme::CatmullClark];
+    pub const ALL: &'static [Scheme] = &[
+        Scheme::CatmullClark,
+        Scheme::Loop,
+        Scheme::DooSabin,
+        Scheme::Bilinear,
+        Scheme::Midpoint,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Scheme::CatmullClark => "catmull-clark",
+            Scheme::Loop => "loop",
+            Scheme::DooSabin => "doo-sabin",
+            Scheme::Bilinear => "bilinear",
+            Scheme::Midpoint => "midpoint",
         }
+    }
+
+    /// True for the schemes defined on triangles only.
+    pub fn triangles_only(self) -> bool {
+        matches!(self, Scheme::Loop | Scheme::Midpoint)
+    }
+
+    /// Parses one name or a comma-separated list of names, one per level.
+    pub fn parse_list(list: &str) -> Result<Vec<Scheme>> {
+        list.split(',').map(|name| name.trim().parse()).collect()
     }
 }
 
@@ -42,6 +73,9 @@ pub enum Boundary {
     Fixed,
     /// A boundary vertex moves to the mean of itself and its boundary edges' midpoints (seed 003).
     Average,
+    /// No boundary interpolation: Doo-Sabin leaves out the faces of boundary edges and vertices,
+    /// so the surface retracts from the boundary, as CGAL's Doo-Sabin does. Doo-Sabin only.
+    None,
 }
 
 impl Boundary {
@@ -58,6 +92,7 @@ impl Boundary {
             Boundary::EdgeOnly => "edge-only",
             Boundary::Fixed => "fixed",
             Boundary::Average => "average",
+            Boundary::None => "none",
         }
     }
 }
@@ -150,32 +185,69 @@ impl Options {
     }
 }
 
-/// Predicted `(vertices, faces)` after all levels, saturating instead of overflowing.
+/// Predicted `(vertices, faces)` after all levels, saturating instead of overflowing. Exact for
+/// the primal schemes; for Doo-Sabin an upper bound.
 pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
-    let (mut v, mut e, mut h, mut f) = (
-        mesh.num_vertices() as u64,
-        mesh.num_edges() as u64,
-        mesh.num_half_edges() as u64,
-        mesh.num_cells() as u64,
-    );
+    let mut counts = [
+        mesh.num_vertices(),
+        mesh.num_edges(),
+        mesh.num_half_edges(),
+        mesh.num_cells(),
+    ]
+    .map(|n| n as u64);
     for scheme in &options.schemes {
-        match scheme {
-            Scheme::CatmullClark => {
-                let [v2, e2, h2, f2] = pqq::child_counts(v, e, h, f);
-                (v, e, h, f) = (v2, e2, h2, f2);
-            }
-        }
-        if f > u64::MAX / 16 {
+        let [v, e, h, f] = counts;
+        counts = match scheme {
+            Scheme::CatmullClark | Scheme::Bilinear => pqq::child_counts(v, e, h, f),
+            Scheme::Loop | Scheme::Midpoint => ptq::child_counts(v, e, h, f),
+            Scheme::DooSabin => dqq::child_counts(v, e, h, f),
+        };
+        if counts[3] > u64::MAX / 64 {
             break;
         }
     }
-    (v, f)
+    (counts[0], counts[3])
 }
 
 /// Subdivides `mesh` as `options` says. The input is only read.
 pub fn subdivide(mesh: &PolyMesh, options: &Options) -> Result<PolyMesh> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
     subdivide_mesh(base, options)
+}
+
+/// Refuses a scheme on a mesh it is not defined on, naming the first offending face.
+fn check_scheme(
+    mesh: &HalfEdgeMesh,
+    scheme: Scheme,
+    boundary: Boundary,
+    level: usize,
+) -> Result<()> {
+    let at = |what: String| Error::Unsupported(format!("level {}: {what}", level + 1));
+    if scheme.triangles_only() {
+        if let Some(c) = mesh
+            .cell_indices()
+            .find(|&c| mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize] != 3)
+        {
+            let n = mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize];
+            let when = if level == 0 {
+                "the input"
+            } else {
+                "the previous level's result"
+            };
+            return Err(at(format!(
+                "{scheme} is defined on triangles only, but face {c} of {when} has {n} vertices; use 'quad-triangle' for meshes with quads, or triangulate first"
+            )));
+        }
+    }
+    if boundary == Boundary::None && scheme != Scheme::DooSabin {
+        return Err(at(format!(
+            "boundary 'none' is only defined for doo-sabin; use 'edge-and-corner', 'edge-only', 'fixed' or 'average' with {scheme}"
+        )));
+    }
+    if scheme == Scheme::DooSabin {
+        dqq::check(mesh, scheme.name()).map_err(|e| at(e.to_string()))?;
+    }
+    Ok(())
 }
 
 /// Subdivides an already built half-edge mesh.
@@ -190,31 +262,67 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
     }
     let mut mesh = base;
     let levels = options.schemes.len();
-    for (level, scheme) in options.schemes.iter().enumerate() {
+    for (level, &scheme) in options.schemes.iter().enumerate() {
+        check_scheme(&mesh, scheme, options.boundary, level)?;
         let last = level + 1 == levels;
-        match scheme {
-            Scheme::CatmullClark => {
-                let rules = CatmullClark {
-                    boundary: options.boundary,
+        let boundary = options.boundary;
+        let child = match scheme {
+            Scheme::CatmullClark => quad_split(mesh, &CatmullClark { boundary }, last),
+            Scheme::Bilinear => quad_split(mesh, &Bilinear, last),
+            Scheme::Loop => tri_split(&mesh, &Loop { boundary }),
+            Scheme::Midpoint => tri_split(&mesh, &Midpoint),
+            Scheme::DooSabin => {
+                let mode = if boundary == Boundary::None {
+                    DualBoundary::Retract
+                } else {
+                    DualBoundary::Chaikin
                 };
-                let count = pqq::num_child_vertices(&mesh);
-                if last {
-                    // Written straight into the output array: no copy of the largest buffer.
-                    let mut positions = vec![0.0f32; 3 * count];
-                    pqq::refine_points(&mesh, &rules, positions.as_chunks_mut::<3>().0);
-                    let indices = pqq::child_face_indices(&mesh);
-                    let face_sizes = vec![4; mesh.num_half_edges()];
-                    return Ok(PolyMesh {
-                        positions,
-                        indices,
-                        face_sizes,
-                    });
-                }
-                let mut positions = vec![[0.0f32; 3]; count];
-                pqq::refine_points(&mesh, &rules, &mut positions);
-                mesh = pqq::child_mesh(&mesh, positions);
+                Level::Poly(dqq::refine(&mesh, &DooSabin, mode))
             }
-        }
+        };
+        mesh = match child {
+            Level::Poly(poly) if last => return Ok(poly),
+            Level::Poly(poly) => HalfEdgeMesh::from_poly(&poly)?,
+            Level::Mesh(mesh) => mesh,
+        };
     }
     Ok(mesh.to_poly())
+}
+
+/// One level's result: flat arrays (always for the last level), or a mesh built by index
+/// arithmetic where a host can do that.
+enum Level {
+    Poly(PolyMesh),
+    Mesh(HalfEdgeMesh),
+}
+
+fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> Level {
+    let count = pqq::num_child_vertices(&mesh);
+    if last {
+        // Written straight into the output array: no copy of the largest buffer.
+        let mut positions = vec![0.0f32; 3 * count];
+        pqq::refine_points(&mesh, rules, positions.as_chunks_mut::<3>().0);
+        let indices = pqq::child_face_indices(&mesh);
+        let face_sizes = vec![4; mesh.num_half_edges()];
+        return Level::Poly(PolyMesh {
+            positions,
+            indices,
+            face_sizes,
+        });
+    }
+    let mut positions = vec![[0.0f32; 3]; count];
+    pqq::refine_points(&mesh, rules, &mut positions);
+    Level::Mesh(pqq::child_mesh(&mesh, positions))
+}
+
+fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Level {
+    let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
+    ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
+    let indices = ptq::child_face_indices(mesh);
+    let face_sizes = vec![3; indices.len() / 3];
+    Level::Poly(PolyMesh {
+        positions,
+        indices,
+        face_sizes,
+    })
 }

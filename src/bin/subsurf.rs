@@ -8,16 +8,16 @@ use subsurf::HalfEdgeMesh;
 
 const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
 
-  --scheme SCHEME    catmull-clark (default)
-  --levels N         levels of subdivision, 0 or more (default 1)
-  --boundary MODE    edge-and-corner (default), edge-only, fixed, average
+  --scheme SCHEME    catmull-clark (default), loop, doo-sabin, bilinear, midpoint;
+                     or a comma-separated list, one scheme per level
+  --levels N         levels of subdivision, 0 or more (default 1, or the list's length)
+  --boundary MODE    edge-and-corner (default), edge-only, fixed, average, none (doo-sabin)
   --max-faces N      refuse when the result would have more faces (default 16777216)
   --stats            print counts and timings to stderr
   -o OUTPUT.obj      where to write the result (default: standard output)";
 
 struct Args {
-    scheme: Scheme,
-    levels: u32,
+    schemes: Vec<Scheme>,
     boundary: Boundary,
     max_faces: u64,
     stats: bool,
@@ -27,8 +27,7 @@ struct Args {
 
 fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut parsed = Args {
-        scheme: Scheme::CatmullClark,
-        levels: 1,
+        schemes: vec![Scheme::CatmullClark],
         boundary: Boundary::default(),
         max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
         stats: false,
@@ -36,6 +35,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         output: None,
     };
     let mut input = None;
+    let mut levels: Option<u32> = None;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
         let mut value = |flag: &str| {
@@ -44,12 +44,15 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 .ok_or_else(|| format!("{flag} needs a value"))
         };
         match arg.as_str() {
-            "--scheme" => parsed.scheme = value("--scheme")?.parse().map_err(|e| format!("{e}"))?,
+            "--scheme" => {
+                parsed.schemes =
+                    Scheme::parse_list(&value("--scheme")?).map_err(|e| format!("{e}"))?
+            }
             "--levels" => {
                 let v = value("--levels")?;
-                parsed.levels = v.parse().map_err(|_| {
+                levels = Some(v.parse().map_err(|_| {
                     format!("--levels '{v}' is not a whole number of levels (0, 1, 2, ...)")
-                })?;
+                })?);
             }
             "--boundary" => {
                 parsed.boundary = value("--boundary")?.parse().map_err(|e| format!("{e}"))?
@@ -74,6 +77,16 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         }
     }
     parsed.input = input.ok_or("no input file given")?;
+    match (parsed.schemes.as_slice(), levels) {
+        ([one], levels) => parsed.schemes = vec![*one; levels.unwrap_or(1) as usize],
+        (list, Some(n)) if n as usize != list.len() => {
+            return Err(format!(
+                "--scheme lists {} schemes but --levels is {n}; give one scheme per level, or leave out --levels",
+                list.len()
+            ));
+        }
+        _ => {}
+    }
     Ok(parsed)
 }
 
@@ -87,10 +100,10 @@ fn run(args: Args) -> Result<(), String> {
     let t = Instant::now();
     let mesh = HalfEdgeMesh::from_poly(&input).map_err(|e| format!("{}: {e}", args.input))?;
     let build_time = t.elapsed();
-    let options = Options::new(args.scheme, args.levels).with_boundary(args.boundary);
     let options = Options {
+        schemes: args.schemes.clone(),
+        boundary: args.boundary,
         max_faces: args.max_faces,
-        ..options
     };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
@@ -113,9 +126,11 @@ fn run(args: Args) -> Result<(), String> {
     let write_time = t.elapsed();
     if args.stats {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        let names: Vec<&str> = args.schemes.iter().map(|s| s.name()).collect();
         eprintln!(
-            "scheme      {} x {} ({} boundary)",
-            args.scheme, args.levels, args.boundary
+            "schemes     {} ({} boundary)",
+            names.join(","),
+            args.boundary
         );
         eprintln!("input       {in_v} vertices, {in_e} edges, {in_f} faces");
         eprintln!(

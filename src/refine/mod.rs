@@ -1,4 +1,10 @@
 //! Topology hosts: how the child mesh is connected. A host asks a stencil policy from
 //! [`crate::rules`] for every new point and never chooses a weight itself.
+//!
+//! - [`pqq`]: primal quad split (Catmull-Clark, bilinear);
+//! - [`ptq`]: primal triangle split (Loop, midpoint);
+//! - [`dqq`]: dual split (Doo-Sabin).
 
+pub mod dqq;
 pub mod pqq;
+pub mod ptq;

@@ -6,10 +6,17 @@
 //! of the host's topology split and pass it to the host's `refine` function.
 
 mod catmull_clark;
+mod doo_sabin;
+mod linear;
+mod loop_subdivision;
 
 pub use catmull_clark::CatmullClark;
+pub use doo_sabin::DooSabin;
+pub use linear::{Bilinear, Midpoint};
+pub use loop_subdivision::Loop;
 
 use crate::mesh::HalfEdgeMesh;
+use crate::scheme::Boundary;
 use glam::Vec3;
 
 /// The geometry policy of a primal quad split (PQQ): every face gets a face point, every edge an
@@ -41,4 +48,103 @@ pub(crate) fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
         .iter()
         .fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
     sum / corners.len() as f32
+}
+
+/// The geometry policy of a primal triangle split (PTQ): every edge gets an edge point, every
+/// vertex a new position; each triangle becomes four.
+pub trait TriSplitRules {
+    /// The point for edge `edge`.
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3;
+    /// The new position of vertex `vertex`.
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3;
+}
+
+/// The geometry policy of a dual split (DQQ): every face corner (half-edge) gets a new point,
+/// and the new faces join them.
+pub trait CornerRules {
+    /// The point for the corner of half-edge `half_edge`'s cell at its from-vertex.
+    fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> Vec3;
+}
+
+/// What a vertex's one-ring looks like, gathered once and shared by the primal vertex rules.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Ring {
+    /// Number of incident edges.
+    pub valence: u32,
+    /// Number of incident faces.
+    pub faces: u32,
+    /// Sum of the other ends of all incident edges.
+    pub neighbours: Vec3,
+    /// Sum of the other ends of incident boundary (single-face) edges, and their number.
+    pub boundary: Vec3,
+    pub boundary_edges: u32,
+}
+
+/// Gathers the one-ring of `vertex`, calling `per_face(h)` for each half-edge `h` leaving it
+/// (one per incident face).
+#[inline]
+pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u32)) -> Ring {
+    let mut r = Ring::default();
+    for &h in mesh.out_half_edges(vertex) {
+        per_face(h);
+        r.faces += 1;
+        let to = vec3(mesh.positions[mesh.to_vertex(h) as usize]);
+        r.neighbours += to;
+        r.valence += 1;
+        if mesh.he_next_around_edge[h as usize] == h {
+            r.boundary += to;
+            r.boundary_edges += 1;
+        }
+        // An incoming boundary half-edge is the only trace of its edge among the outgoing ones.
+        let incoming = mesh.prev_in_cell(h);
+        if mesh.he_next_around_edge[incoming as usize] == incoming {
+            let from = vec3(mesh.positions[mesh.he_from[incoming as usize] as usize]);
+            r.neighbours += from;
+            r.valence += 1;
+            r.boundary += from;
+            r.boundary_edges += 1;
+        }
+    }
+    r
+}
+
+/// The new position of a vertex with boundary edges under `boundary`, or `None` for an interior
+/// vertex, which the scheme's own smooth rule moves. Shared by every primal scheme.
+#[inline]
+pub(crate) fn boundary_vertex_rule(boundary: Boundary, v: Vec3, ring: &Ring) -> Option<Vec3> {
+    if ring.boundary_edges == 0 {
+        return None;
+    }
+    Some(match boundary {
+        // `None` never reaches a primal scheme (refused up front); fixed is the safe reading.
+        Boundary::Fixed | Boundary::None => v,
+        Boundary::Average => {
+            // Seed 003: the mean of v and the midpoints of its boundary edges.
+            let k = ring.boundary_edges as f32;
+            (v + (ring.boundary + k * v) * 0.5) / (k + 1.0)
+        }
+        Boundary::EdgeAndCorner if ring.faces == 1 && ring.boundary_edges == 2 => v,
+        Boundary::EdgeOnly | Boundary::EdgeAndCorner if ring.boundary_edges == 2 => {
+            (v * 6.0 + ring.boundary) * 0.125
+        }
+        // More than two boundary edges: the vertex joins several fans and has no crease
+        // direction, so it stays put as a corner.
+        Boundary::EdgeOnly | Boundary::EdgeAndCorner => v,
+    })
+}
+
+/// True when `edge` has exactly two half-edges running opposite ways: the only kind of edge a
+/// smooth edge rule applies to. Boundary and non-manifold edges are sharp creases.
+#[inline]
+pub(crate) fn smooth_edge(mesh: &HalfEdgeMesh, edge: u32) -> Option<[u32; 2]> {
+    match mesh.edge_half_edges[mesh.edge_range(edge as usize)] {
+        [h0, h1] if mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize] => Some([h0, h1]),
+        _ => None,
+    }
+}
+
+#[inline]
+pub(crate) fn edge_midpoint(mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
+    let [a, b] = mesh.edge_vertices[edge as usize];
+    (vec3(mesh.positions[a as usize]) + vec3(mesh.positions[b as usize])) * 0.5
 }

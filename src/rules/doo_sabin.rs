@@ -1,0 +1,43 @@
+//! Doo-Sabin corner points, with the weights of CGAL's `DooSabin_mask_3`: for an `n`-gon with
+//! vertices `v_0 .. v_{n-1}` starting at the corner, `Σ α_k v_k` with `α_0 = 1/4 + 5/(4n)` and
+//! `α_k = (3 + 2 cos(2πk/n)) / (4n)`; for quads this is `(9, 3, 1, 3) / 16`.
+
+use super::{vec3, CornerRules};
+use crate::mesh::HalfEdgeMesh;
+use glam::Vec3;
+
+/// Doo-Sabin subdivision rules.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DooSabin;
+
+/// The Doo-Sabin weight of the vertex `k` steps after the corner in an `n`-gon.
+pub fn doo_sabin_weight(n: usize, k: usize) -> f32 {
+    let nf = n as f64;
+    let w = if k == 0 {
+        0.25 + 1.25 / nf
+    } else {
+        (3.0 + 2.0 * (std::f64::consts::TAU * k as f64 / nf).cos()) / (4.0 * nf)
+    };
+    w as f32
+}
+
+impl CornerRules for DooSabin {
+    #[inline]
+    fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> Vec3 {
+        let c = mesh.he_cell[half_edge as usize] as usize;
+        let (start, end) = (
+            mesh.cell_offsets[c] as usize,
+            mesh.cell_offsets[c + 1] as usize,
+        );
+        let corners = &mesh.he_from[start..end];
+        let n = corners.len();
+        let first = half_edge as usize - start;
+        if n == 4 {
+            let p = |k: usize| vec3(mesh.positions[corners[(first + k) % 4] as usize]);
+            return (p(0) * 9.0 + (p(1) + p(3)) * 3.0 + p(2)) / 16.0;
+        }
+        (0..n).fold(Vec3::ZERO, |sum, k| {
+            sum + vec3(mesh.positions[corners[(first + k) % n] as usize]) * doo_sabin_weight(n, k)
+        })
+    }
+}
