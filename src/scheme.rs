@@ -3,9 +3,9 @@
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::refine::dqq::{self, DualBoundary};
-use crate::refine::{pqq, ptq};
+use crate::refine::{pqq, ptq, quad_tri};
 use crate::rules::{
-    Bilinear, CatmullClark, DooSabin, Loop, Midpoint, QuadSplitRules, TriSplitRules,
+    Bilinear, CatmullClark, DooSabin, Loop, Midpoint, QuadSplitRules, QuadTriangle, TriSplitRules,
 };
 use serde::Deserialize;
 use std::fmt;
@@ -26,6 +26,9 @@ pub enum Scheme {
     Bilinear,
     /// Midpoint: the triangle split with midpoints; triangles only.
     Midpoint,
+    /// Quad/Triangle (Stam & Loop 2003): Catmull-Clark on quads, Loop on triangles, and a
+    /// blend where they meet; other polygons split into quads at the first level.
+    QuadTriangle,
 }
 
 impl Scheme {
@@ -33,6 +36,7 @@ impl Scheme {
         Scheme::CatmullClark,
         Scheme::Loop,
         Scheme::DooSabin,
+        Scheme::QuadTriangle,
         Scheme::Bilinear,
         Scheme::Midpoint,
     ];
@@ -44,6 +48,7 @@ impl Scheme {
             Scheme::DooSabin => "doo-sabin",
             Scheme::Bilinear => "bilinear",
             Scheme::Midpoint => "midpoint",
+            Scheme::QuadTriangle => "quad-triangle",
         }
     }
 
@@ -201,6 +206,12 @@ pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
             Scheme::CatmullClark | Scheme::Bilinear => pqq::child_counts(v, e, h, f),
             Scheme::Loop | Scheme::Midpoint => ptq::child_counts(v, e, h, f),
             Scheme::DooSabin => dqq::child_counts(v, e, h, f),
+            Scheme::QuadTriangle => {
+                // Upper bound: as if every face were a triangle (four children, no centroid)
+                // and as if none were (a centroid each); exact counts need the face sizes.
+                let [v2, f2] = quad_tri::child_counts(v, e, h, f, 0);
+                [v2, 2 * e + h, 4 * h, f2.max(4 * f)]
+            }
         };
         if counts[3] > u64::MAX / 64 {
             break;
@@ -271,6 +282,14 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
             Scheme::Bilinear => quad_split(mesh, &Bilinear, last),
             Scheme::Loop => tri_split(&mesh, &Loop { boundary }),
             Scheme::Midpoint => tri_split(&mesh, &Midpoint),
+            Scheme::QuadTriangle => {
+                let linear = HalfEdgeMesh::from_poly(&quad_tri::linear_split(&mesh))?;
+                let positions = quad_tri::smooth(&linear, &QuadTriangle { boundary });
+                Level::Poly(PolyMesh {
+                    positions,
+                    ..linear.to_poly()
+                })
+            }
             Scheme::DooSabin => {
                 let mode = if boundary == Boundary::None {
                     DualBoundary::Retract

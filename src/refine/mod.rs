@@ -3,8 +3,10 @@
 //!
 //! - [`pqq`]: primal quad split (Catmull-Clark, bilinear);
 //! - [`ptq`]: primal triangle split (Loop, midpoint);
-//! - [`dqq`]: dual split (Doo-Sabin).
+//! - [`dqq`]: dual split (Doo-Sabin);
+//! - [`quad_tri`]: triangles as PTQ, other faces as PQQ (Quad/Triangle).
 
 pub mod dqq;
 pub mod pqq;
 pub mod ptq;
+pub mod quad_tri;

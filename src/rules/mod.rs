@@ -9,11 +9,13 @@ mod catmull_clark;
 mod doo_sabin;
 mod linear;
 mod loop_subdivision;
+mod quad_triangle;
 
 pub use catmull_clark::CatmullClark;
 pub use doo_sabin::DooSabin;
 pub use linear::{Bilinear, Midpoint};
 pub use loop_subdivision::Loop;
+pub use quad_triangle::QuadTriangle;
 
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
@@ -41,7 +43,7 @@ pub(crate) fn vec3(p: [f32; 3]) -> Vec3 {
 
 /// The centroid of a cell: the face point of every primal scheme.
 #[inline]
-pub(crate) fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
+pub fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
     let c = cell as usize;
     let corners = &mesh.he_from[mesh.cell_offsets[c] as usize..mesh.cell_offsets[c + 1] as usize];
     let sum = corners
@@ -56,6 +58,13 @@ pub trait TriSplitRules {
     /// The point for edge `edge`.
     fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3;
     /// The new position of vertex `vertex`.
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3;
+}
+
+/// A smoothing policy that moves every vertex of an already (linearly) refined mesh, for
+/// schemes that factor into a linear split followed by averaging, such as Quad/Triangle.
+pub trait AveragingRules {
+    /// The new position of vertex `vertex` of the refined mesh.
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3;
 }
 
@@ -144,7 +153,7 @@ pub(crate) fn smooth_edge(mesh: &HalfEdgeMesh, edge: u32) -> Option<[u32; 2]> {
 }
 
 #[inline]
-pub(crate) fn edge_midpoint(mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
+pub fn edge_midpoint(mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
     let [a, b] = mesh.edge_vertices[edge as usize];
     (vec3(mesh.positions[a as usize]) + vec3(mesh.positions[b as usize])) * 0.5
 }

@@ -1,0 +1,106 @@
+//! The mixed split of Quad/Triangle subdivision: triangles split into four as in
+//! [`super::ptq`], every other face into quads around its centroid as in [`super::pqq`], with
+//! linear (midpoint and centroid) positions. A smoothing policy
+//! ([`crate::rules::AveragingRules`]) then moves every vertex of the refined mesh.
+//!
+//! Child vertices are `[old vertices | centroids of non-triangles, in cell order | edge
+//! midpoints]`; child faces follow the parent cells, four triangles per triangle (in the PTQ
+//! order) or `n` quads per `n`-gon (in the PQQ order).
+
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::rules::{centroid, edge_midpoint, AveragingRules};
+
+/// Child `[vertices, faces]` of one level, from the parent counts and the number of triangles
+/// `tris` (whose half-edges number `3 tris`).
+pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64, tris: u64) -> [u64; 2] {
+    [
+        vertices + (cells - tris) + edges,
+        4 * tris + (half_edges - 3 * tris),
+    ]
+}
+
+/// The linear split: positions at midpoints and centroids, and the child faces.
+pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
+    let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
+    let size = |c: usize| (mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]) as usize;
+    // Index of each cell's centroid among the centroids (u32::MAX for triangles).
+    let mut centroid_of = vec![u32::MAX; nf];
+    let mut centroids = 0u32;
+    let (mut num_indices, mut num_faces) = (0usize, 0usize);
+    for (c, slot) in centroid_of.iter_mut().enumerate() {
+        if size(c) == 3 {
+            (num_indices, num_faces) = (num_indices + 12, num_faces + 4);
+        } else {
+            *slot = centroids;
+            centroids += 1;
+            (num_indices, num_faces) = (num_indices + 4 * size(c), num_faces + size(c));
+        }
+    }
+    let edge_base = (nv as u32) + centroids;
+    let mut positions = vec![0.0f32; 3 * (nv + centroids as usize + ne)];
+    {
+        let points = positions.as_chunks_mut::<3>().0;
+        let (old, rest) = points.split_at_mut(nv);
+        let (faces, edges) = rest.split_at_mut(centroids as usize);
+        old.copy_from_slice(&mesh.positions);
+        for (c, &k) in centroid_of.iter().enumerate() {
+            if k != u32::MAX {
+                faces[k as usize] = centroid(mesh, c as u32).to_array();
+            }
+        }
+        for (e, p) in edges.iter_mut().enumerate() {
+            *p = edge_midpoint(mesh, e as u32).to_array();
+        }
+    }
+    let mut indices = Vec::with_capacity(num_indices);
+    let mut face_sizes = Vec::with_capacity(num_faces);
+    for (c, &k) in centroid_of.iter().enumerate() {
+        let start = mesh.cell_offsets[c] as usize;
+        let n = size(c);
+        let edge_point = |i: usize| edge_base + mesh.he_edge[start + (i % n)];
+        let corner = |i: usize| mesh.he_from[start + i];
+        if k == u32::MAX {
+            let [e0, e1, e2] = [0, 1, 2].map(edge_point);
+            indices.extend_from_slice(&[
+                corner(0),
+                e0,
+                e2,
+                corner(1),
+                e1,
+                e0,
+                corner(2),
+                e2,
+                e1,
+                e0,
+                e1,
+                e2,
+            ]);
+            face_sizes.extend_from_slice(&[3; 4]);
+        } else {
+            let center = nv as u32 + k;
+            for i in 0..n {
+                indices.extend_from_slice(&[
+                    corner(i),
+                    edge_point(i),
+                    center,
+                    edge_point(i + n - 1),
+                ]);
+            }
+            face_sizes.extend(std::iter::repeat_n(4, n));
+        }
+    }
+    PolyMesh {
+        positions,
+        indices,
+        face_sizes,
+    }
+}
+
+/// Moves every vertex of the linearly refined `mesh` by the smoothing policy.
+pub fn smooth<R: AveragingRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<f32> {
+    let mut positions = vec![0.0f32; 3 * mesh.num_vertices()];
+    for (v, p) in positions.as_chunks_mut::<3>().0.iter_mut().enumerate() {
+        *p = rules.vertex_point(mesh, v as u32).to_array();
+    }
+    positions
+}
