@@ -1,0 +1,235 @@
+#!/usr/bin/env python3
+"""Procedural test and benchmark meshes for subsurf, written as OBJ (`v` and `f` lines only).
+
+    make_meshes.py tests OUTDIR
+        The small meshes under tests/meshes/ that the OpenSubdiv fixtures are made from.
+    make_meshes.py torus --major U --minor V [--major-radius R] [--minor-radius r]
+                         [--triangles] OUT.obj
+        One torus (the benchmark meshes of tools/osd/far_perf.sh).
+
+Torus layout (the same for every size, so other benchmarks can rebuild identical meshes):
+
+- U segments around the main (z) axis, V segments around the tube; defaults R = 1.0, r = 0.25.
+- Vertex (i, j), i in 0..U around the z axis, j in 0..V around the tube, has 0-based index
+  i * V + j and position ((R + r cos b) cos a, (R + r cos b) sin a, r sin b) with
+  a = 2 pi i / U and b = 2 pi j / V. Vertices are written in index order.
+- Face (i, j) is written in the order i = 0..U-1 (outer), j = 0..V-1 (inner), as the quad
+  (i, j), (i+1, j), (i+1, j+1), (i, j+1) (indices mod U and V; counter-clockwise seen from
+  outside), or with --triangles as the two triangles (i, j), (i+1, j), (i+1, j+1) and
+  (i, j), (i+1, j+1), (i, j+1), in that order.
+- So a torus has U*V vertices and U*V quads (2*U*V triangles): 1000 x 1000 gives 1,000,000
+  quads; 250 x 200 with --triangles gives 100,000 triangles.
+
+Coordinates are printed with repr(), the shortest string that reads back as the same double.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+
+def fmt(x):
+    # Avoid "-0.0" so that files do not depend on the sign of a rounded zero.
+    if x == 0.0:
+        x = 0.0
+    return repr(float(x))
+
+
+def write_obj(path, vertices, faces, comment):
+    with open(path, "w", encoding="ascii", newline="\n") as out:
+        for line in comment.strip().splitlines():
+            out.write("# " + line + "\n")
+        for v in vertices:
+            out.write("v " + " ".join(fmt(c) for c in v) + "\n")
+        for f in faces:
+            out.write("f " + " ".join(str(i + 1) for i in f) + "\n")
+
+
+def torus(major, minor, major_radius=1.0, minor_radius=0.25, triangles=False):
+    vertices = []
+    for i in range(major):
+        a = 2.0 * math.pi * i / major
+        for j in range(minor):
+            b = 2.0 * math.pi * j / minor
+            ring = major_radius + minor_radius * math.cos(b)
+            vertices.append((ring * math.cos(a), ring * math.sin(a), minor_radius * math.sin(b)))
+    faces = []
+    for i in range(major):
+        for j in range(minor):
+            p = i * minor + j
+            q = ((i + 1) % major) * minor + j
+            r = ((i + 1) % major) * minor + (j + 1) % minor
+            s = i * minor + (j + 1) % minor
+            if triangles:
+                faces.append((p, q, r))
+                faces.append((p, r, s))
+            else:
+                faces.append((p, q, r, s))
+    return vertices, faces
+
+
+def compact(vertices, faces):
+    """Drops vertices no face uses and renumbers, keeping the order of the rest."""
+    used = sorted({i for f in faces for i in f})
+    new_index = {old: k for k, old in enumerate(used)}
+    return [vertices[i] for i in used], [tuple(new_index[i] for i in f) for f in faces]
+
+
+def grid_with_hole(n=8, hole=(3, 5)):
+    """An n x n grid of unit quads in the xy plane (z a gentle bump), without the cells
+    hole[0] <= x, y < hole[1]: an outer boundary and an inner one."""
+    vertices = []
+    for y in range(n + 1):
+        for x in range(n + 1):
+            z = 0.1 * math.sin(0.7 * x) * math.cos(0.5 * y)
+            vertices.append((float(x), float(y), z))
+    faces = []
+    for y in range(n):
+        for x in range(n):
+            if hole[0] <= x < hole[1] and hole[0] <= y < hole[1]:
+                continue
+            a = y * (n + 1) + x
+            faces.append((a, a + 1, a + n + 2, a + n + 1))
+    return compact(vertices, faces)
+
+
+def mixed_ngons_open():
+    """A hexagon ringed by quads and pentagons, with triangles hanging off the quads: faces of
+    3, 4, 5 and 6 sides and one boundary loop."""
+    vertices = []
+    hexagon = []
+    for k in range(6):
+        a = math.pi * k / 3.0
+        hexagon.append(len(vertices))
+        vertices.append((math.cos(a), math.sin(a), 0.15 * (k % 2)))
+    outer = []
+    for k in range(6):
+        a = math.pi * k / 3.0
+        outer.append(len(vertices))
+        vertices.append((2.2 * math.cos(a), 2.2 * math.sin(a), -0.2 + 0.1 * (k % 3)))
+    faces = [tuple(hexagon)]
+    for k in range(6):
+        k1 = (k + 1) % 6
+        mid = 0.5 * (2 * k + 1) * math.pi / 3.0
+        if k % 2 == 0:
+            faces.append((hexagon[k], outer[k], outer[k1], hexagon[k1]))
+            tip = len(vertices)
+            vertices.append((3.2 * math.cos(mid), 3.2 * math.sin(mid), 0.3))
+            faces.append((outer[k1], outer[k], tip))
+        else:
+            m = len(vertices)
+            vertices.append((2.6 * math.cos(mid), 2.6 * math.sin(mid), 0.1))
+            faces.append((hexagon[k], outer[k], m, outer[k1], hexagon[k1]))
+    return vertices, faces
+
+
+def prism_mixed_closed():
+    """A closed hexagonal prism: a hexagon on top, the bottom split into a triangle and a
+    pentagon, and one side quad split into two triangles."""
+    vertices = []
+    for z, radius in ((0.0, 1.0), (1.5, 0.8)):
+        for k in range(6):
+            a = math.pi * k / 3.0 + 0.1 * z
+            vertices.append((radius * math.cos(a), radius * math.sin(a), z + 0.05 * (k % 2)))
+    bottom = list(range(6))
+    top = list(range(6, 12))
+    faces = [tuple(top), (bottom[2], bottom[1], bottom[0]), (bottom[0], bottom[5], bottom[4], bottom[3], bottom[2])]
+    for k in range(6):
+        k1 = (k + 1) % 6
+        a, b, c, d = bottom[k], bottom[k1], top[k1], top[k]
+        if k == 3:
+            faces.append((a, b, c))
+            faces.append((a, c, d))
+        else:
+            faces.append((a, b, c, d))
+    return vertices, faces
+
+
+def pentagonal_prism_closed():
+    vertices = []
+    for z in (0.0, 1.0):
+        for k in range(5):
+            a = 2.0 * math.pi * k / 5.0
+            vertices.append((math.cos(a), math.sin(a), z))
+    faces = [tuple(range(4, -1, -1)), tuple(range(5, 10))]
+    for k in range(5):
+        k1 = (k + 1) % 5
+        faces.append((k, k1, 5 + k1, 5 + k))
+    return vertices, faces
+
+
+def check_oriented_manifold(name, vertices, faces):
+    """Every directed edge used once, every edge by at most two faces, every vertex used."""
+    directed = set()
+    for f in faces:
+        for k in range(len(f)):
+            e = (f[k], f[(k + 1) % len(f)])
+            if e in directed:
+                raise SystemExit(f"{name}: directed edge {e} used twice (bad orientation)")
+            directed.add(e)
+    used = {i for f in faces for i in f}
+    if len(used) != len(vertices):
+        raise SystemExit(f"{name}: {len(vertices) - len(used)} unused vertices")
+
+
+def single_triangle():
+    return [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.25, 0.8, 0.1)], [(0, 1, 2)]
+
+
+def single_pentagon():
+    vertices = []
+    for k in range(5):
+        a = 2.0 * math.pi * k / 5.0 + 0.3
+        vertices.append((math.cos(a), 0.8 * math.sin(a), 0.1 * (k % 2)))
+    return vertices, [tuple(range(5))]
+
+
+TEST_MESHES = {
+    "own_torus_12x8": (lambda: torus(12, 8), "quad torus, 12 x 8 (see make_meshes.py for the layout)"),
+    "own_grid_hole": (grid_with_hole, "8 x 8 quad grid with a 2 x 2 hole: two boundary loops"),
+    "own_mixed_ngons_open": (mixed_ngons_open, "open mesh of triangles, quads, pentagons and a hexagon"),
+    "own_prism_mixed_closed": (prism_mixed_closed, "closed hexagonal prism with triangles, quads, a pentagon"),
+    "own_pentagonal_prism": (pentagonal_prism_closed, "closed pentagonal prism"),
+    "own_single_triangle": (single_triangle, "one triangle"),
+    "own_single_pentagon": (single_pentagon, "one pentagon"),
+}
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    tests = sub.add_parser("tests", help="write the small test meshes into a directory")
+    tests.add_argument("outdir")
+    t = sub.add_parser("torus", help="write one torus")
+    t.add_argument("--major", type=int, required=True, help="segments around the main axis (U)")
+    t.add_argument("--minor", type=int, required=True, help="segments around the tube (V)")
+    t.add_argument("--major-radius", type=float, default=1.0)
+    t.add_argument("--minor-radius", type=float, default=0.25)
+    t.add_argument("--triangles", action="store_true", help="split every quad into two triangles")
+    t.add_argument("out")
+    args = parser.parse_args(argv)
+
+    if args.command == "tests":
+        os.makedirs(args.outdir, exist_ok=True)
+        for name, (make, what) in TEST_MESHES.items():
+            vertices, faces = make()
+            check_oriented_manifold(name, vertices, faces)
+            path = os.path.join(args.outdir, name + ".obj")
+            write_obj(path, vertices, faces, "generated by tools/osd/make_meshes.py: " + what)
+            print(path)
+    else:
+        vertices, faces = torus(args.major, args.minor, args.major_radius, args.minor_radius, args.triangles)
+        kind = "triangles" if args.triangles else "quads"
+        write_obj(
+            args.out,
+            vertices,
+            faces,
+            f"generated by tools/osd/make_meshes.py torus --major {args.major} --minor {args.minor} "
+            f"--major-radius {args.major_radius} --minor-radius {args.minor_radius}: {len(faces)} {kind}",
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

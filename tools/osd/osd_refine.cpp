@@ -1,0 +1,379 @@
+// osd_refine: uniform refinement of an OBJ mesh with OpenSubdiv's Far layer, written as OBJ.
+//
+// Our own reference tool for subsurf's fixtures (see DEVELOPERS.md, "Reference fixtures").
+// It reads `v` and `f` lines (any of the v, v/vt, v//vn, v/vt/vn forms, negative indices too) and
+// OpenSubdiv regression `t` tag lines (`t NAME nint/nfloat/nstring ints floats strings`), builds a
+// Far::TopologyRefiner from a Far::TopologyDescriptor, refines it uniformly, interpolates the
+// positions level by level in double precision with Far::PrimvarRefinerReal<double>, and writes the last
+// level: every vertex (`v`, %.17g) and every face that is not a hole (`f`, 1-based), both in
+// OpenSubdiv's own order.
+//
+//   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
+//              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
+//              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
+//
+// Boundary interpolation: --boundary wins; otherwise the file's `interpolateboundary` tag
+// (0 none, 1 edge-and-corner, 2 edge-only); otherwise edge-only, the default of OpenSubdiv's
+// regression suite (regression/common/far_utils.h, GetSdcOptions), for which these shapes were
+// written. --ignore-tags drops crease, corner, hole, creasemethod and smoothtriangles tags; it
+// keeps interpolateboundary (which --boundary overrides anyway).
+//
+// --time R refines and interpolates R times and prints, to stderr, the best and median wall
+// time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
+// per-level position arrays), and of the two together; the refiner's construction from the
+// descriptor (TopologyRefinerFactory::Create) is timed separately, last run only. --no-output skips writing the result (for timing).
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#include <opensubdiv/version.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace OpenSubdiv;
+
+namespace {
+
+// A position in double precision, as PrimvarRefiner's interface wants it (weights are double too).
+struct Point3 {
+    double p[3];
+    void Clear(void * = nullptr) { p[0] = p[1] = p[2] = 0.0; }
+    void AddWithWeight(Point3 const & src, double weight) {
+        p[0] += weight * src.p[0];
+        p[1] += weight * src.p[1];
+        p[2] += weight * src.p[2];
+    }
+};
+
+struct Tag {
+    std::string name;
+    std::vector<int> ints;
+    std::vector<float> floats;
+    std::vector<std::string> strings;
+    int line;
+};
+
+struct Mesh {
+    std::vector<double> positions;  // x y z per vertex
+    std::vector<int> faceSizes;
+    std::vector<int> faceIndices;   // 0-based
+    std::vector<Tag> tags;
+};
+
+[[noreturn]] void fail(std::string const & message) {
+    std::fprintf(stderr, "osd_refine: %s\n", message.c_str());
+    std::exit(1);
+}
+
+std::string at(std::string const & path, int line) {
+    return path + ":" + std::to_string(line) + ": ";
+}
+
+Mesh readObj(std::string const & path) {
+    std::ifstream in(path);
+    if (!in) fail("cannot open '" + path + "'");
+    Mesh mesh;
+    std::string raw;
+    int lineNo = 0;
+    while (std::getline(in, raw)) {
+        ++lineNo;
+        std::string line = raw.substr(0, raw.find('#'));
+        std::istringstream words(line);
+        std::string kind;
+        if (!(words >> kind)) continue;
+        if (kind == "v") {
+            double xyz[3];
+            for (double & c : xyz) {
+                std::string w;
+                if (!(words >> w)) fail(at(path, lineNo) + "'v' needs x y z");
+                char * end = nullptr;
+                c = std::strtod(w.c_str(), &end);
+                if (*end != 0) fail(at(path, lineNo) + "'" + w + "' is not a number");
+            }
+            mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+        } else if (kind == "f") {
+            int count = 0;
+            std::string w;
+            int numVertices = (int)mesh.positions.size() / 3;
+            while (words >> w) {
+                std::string first = w.substr(0, w.find('/'));
+                char * end = nullptr;
+                long v = std::strtol(first.c_str(), &end, 10);
+                if (first.empty() || *end != 0 || v == 0)
+                    fail(at(path, lineNo) + "'" + w + "' is not a face index");
+                long index = v > 0 ? v - 1 : numVertices + v;
+                if (index < 0) fail(at(path, lineNo) + "relative index reaches before vertex 1");
+                mesh.faceIndices.push_back((int)index);
+                ++count;
+            }
+            if (count < 3) fail(at(path, lineNo) + "a face needs at least 3 vertices");
+            mesh.faceSizes.push_back(count);
+        } else if (kind == "t") {
+            Tag tag;
+            tag.line = lineNo;
+            std::string counts;
+            if (!(words >> tag.name >> counts)) fail(at(path, lineNo) + "bad 't' line");
+            int ni = 0, nf = 0, ns = 0;
+            if (std::sscanf(counts.c_str(), "%d/%d/%d", &ni, &nf, &ns) != 3)
+                fail(at(path, lineNo) + "tag counts '" + counts + "' are not nint/nfloat/nstring");
+            for (int i = 0; i < ni; ++i) {
+                int x;
+                if (!(words >> x)) fail(at(path, lineNo) + "tag has too few integers");
+                tag.ints.push_back(x);
+            }
+            for (int i = 0; i < nf; ++i) {
+                float x;
+                if (!(words >> x)) fail(at(path, lineNo) + "tag has too few floats");
+                tag.floats.push_back(x);
+            }
+            for (int i = 0; i < ns; ++i) {
+                std::string x;
+                if (!(words >> x)) fail(at(path, lineNo) + "tag has too few strings");
+                tag.strings.push_back(x);
+            }
+            mesh.tags.push_back(tag);
+        }
+    }
+    int numVertices = (int)mesh.positions.size() / 3;
+    if (numVertices == 0) fail(path + ": no vertices");
+    if (mesh.faceSizes.empty()) fail(path + ": no faces");
+    for (int v : mesh.faceIndices)
+        if (v >= numVertices) fail(path + ": a face refers to vertex " + std::to_string(v + 1) +
+                                   " of " + std::to_string(numVertices));
+    return mesh;
+}
+
+// One sharpness per item, or one for all (the regression shapes' convention).
+float weightOf(Tag const & tag, size_t item) {
+    if (tag.floats.empty()) return 0.0f;
+    float w = tag.floats.size() > 1 ? tag.floats[std::min(item, tag.floats.size() - 1)] : tag.floats[0];
+    return std::max(0.0f, w);
+}
+
+void usage(int code) {
+    std::fprintf(code ? stderr : stdout,
+                 "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
+                 "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
+                 "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
+    std::exit(code);
+}
+
+}  // namespace
+
+int main(int argc, char ** argv) {
+    Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
+    int levels = 1;
+    int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
+    bool ignoreTags = false, quiet = false, noOutput = false;
+    int repeats = 0;
+    std::string input, output;
+
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) fail(arg + " needs a value");
+            return argv[++i];
+        };
+        if (arg == "--scheme") {
+            std::string s = value();
+            if (s == "catmark") scheme = Sdc::SCHEME_CATMARK;
+            else if (s == "loop") scheme = Sdc::SCHEME_LOOP;
+            else if (s == "bilinear") scheme = Sdc::SCHEME_BILINEAR;
+            else fail("unknown scheme '" + s + "'");
+        } else if (arg == "--levels") {
+            levels = std::atoi(value().c_str());
+            if (levels < 0 || levels > 15) fail("--levels must be 0..15");
+        } else if (arg == "--boundary") {
+            std::string s = value();
+            if (s == "edge-and-corner") boundaryOverride = Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER;
+            else if (s == "edge-only") boundaryOverride = Sdc::Options::VTX_BOUNDARY_EDGE_ONLY;
+            else if (s == "none") boundaryOverride = Sdc::Options::VTX_BOUNDARY_NONE;
+            else fail("unknown boundary '" + s + "'");
+        } else if (arg == "--ignore-tags") {
+            ignoreTags = true;
+        } else if (arg == "--time") {
+            repeats = std::max(1, std::atoi(value().c_str()));
+        } else if (arg == "--no-output") {
+            noOutput = true;
+        } else if (arg == "--quiet") {
+            quiet = true;
+        } else if (arg == "-o" || arg == "--output") {
+            output = value();
+        } else if (arg == "-h" || arg == "--help") {
+            usage(0);
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            std::fprintf(stderr, "osd_refine: unknown option '%s'\n", arg.c_str());
+            usage(2);
+        } else {
+            if (!input.empty()) fail("more than one input file");
+            input = arg;
+        }
+    }
+    if (input.empty()) usage(2);
+
+    Mesh mesh = readObj(input);
+
+    Sdc::Options sdcOptions;
+    sdcOptions.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdcOptions.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
+    sdcOptions.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
+
+    std::vector<Far::Index> creasePairs, corners, holes;
+    std::vector<float> creaseWeights, cornerWeights;
+    int numVertices = (int)mesh.positions.size() / 3;
+    int numFaces = (int)mesh.faceSizes.size();
+    for (Tag const & t : mesh.tags) {
+        std::string where = at(input, t.line);
+        if (t.name == "vertexedit" || t.name == "edgeedit" || t.name == "faceedit") {
+            if (!quiet) std::fprintf(stderr, "osd_refine: warning: %shierarchical edit '%s' ignored (Far has none)\n",
+                                     where.c_str(), t.name.c_str());
+            continue;
+        }
+        if (t.name == "facevaryinginterpolateboundary" || t.name == "facevaryingpropagatecorners") {
+            continue;  // no face-varying data is read
+        }
+        if (t.name == "interpolateboundary") {
+            if (t.ints.size() != 1) fail(where + "interpolateboundary needs one integer");
+            switch (t.ints[0]) {
+                case 0: sdcOptions.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE); break;
+                case 1: sdcOptions.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER); break;
+                case 2: sdcOptions.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY); break;
+                default: fail(where + "interpolateboundary must be 0, 1 or 2");
+            }
+        } else if (t.name == "crease") {
+            if (ignoreTags) continue;
+            if (t.ints.size() % 2) fail(where + "crease needs vertex pairs");
+            for (size_t j = 0; j + 1 < t.ints.size(); j += 2) {
+                if (t.ints[j] < 0 || t.ints[j] >= numVertices || t.ints[j + 1] < 0 || t.ints[j + 1] >= numVertices)
+                    fail(where + "crease vertex out of range");
+                creasePairs.push_back(t.ints[j]);
+                creasePairs.push_back(t.ints[j + 1]);
+                creaseWeights.push_back(weightOf(t, j / 2));
+            }
+        } else if (t.name == "corner") {
+            if (ignoreTags) continue;
+            for (size_t j = 0; j < t.ints.size(); ++j) {
+                if (t.ints[j] < 0 || t.ints[j] >= numVertices) fail(where + "corner vertex out of range");
+                corners.push_back(t.ints[j]);
+                cornerWeights.push_back(weightOf(t, j));
+            }
+        } else if (t.name == "hole") {
+            if (ignoreTags) continue;
+            for (int f : t.ints) {
+                if (f < 0 || f >= numFaces) fail(where + "hole face out of range");
+                holes.push_back(f);
+            }
+        } else if (t.name == "creasemethod") {
+            if (ignoreTags) continue;
+            if (t.strings.size() != 1) fail(where + "creasemethod needs one string");
+            if (t.strings[0] == "normal") sdcOptions.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
+            else if (t.strings[0] == "chaikin") sdcOptions.SetCreasingMethod(Sdc::Options::CREASE_CHAIKIN);
+            else fail(where + "creasemethod must be normal or chaikin");
+        } else if (t.name == "smoothtriangles") {
+            if (ignoreTags) continue;
+            if (t.strings.size() != 1) fail(where + "smoothtriangles needs one string");
+            if (t.strings[0] == "catmark") sdcOptions.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
+            else if (t.strings[0] == "smooth") sdcOptions.SetTriangleSubdivision(Sdc::Options::TRI_SUB_SMOOTH);
+            else fail(where + "smoothtriangles must be catmark or smooth");
+        } else if (!quiet) {
+            std::fprintf(stderr, "osd_refine: warning: %sunknown tag '%s' ignored\n", where.c_str(), t.name.c_str());
+        }
+    }
+    if (boundaryOverride >= 0)
+        sdcOptions.SetVtxBoundaryInterpolation((Sdc::Options::VtxBoundaryInterpolation)boundaryOverride);
+
+    Far::TopologyDescriptor desc;
+    desc.numVertices = numVertices;
+    desc.numFaces = numFaces;
+    desc.numVertsPerFace = mesh.faceSizes.data();
+    desc.vertIndicesPerFace = mesh.faceIndices.data();
+    desc.numCreases = (int)creaseWeights.size();
+    desc.creaseVertexIndexPairs = creasePairs.data();
+    desc.creaseWeights = creaseWeights.data();
+    desc.numCorners = (int)corners.size();
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = cornerWeights.data();
+    desc.numHoles = (int)holes.size();
+    desc.holeIndices = holes.data();
+
+    typedef Far::TopologyRefinerFactory<Far::TopologyDescriptor> Factory;
+    typedef std::chrono::steady_clock Clock;
+    auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    std::vector<std::vector<Point3>> perLevel;
+    std::vector<double> refineTimes, interpolateTimes, totalTimes;
+    double buildTime = 0;
+    for (int run = 0; run < std::max(1, repeats); ++run) {
+        Clock::time_point t0 = Clock::now();
+        refiner.reset(Factory::Create(desc, Factory::Options(scheme, sdcOptions)));
+        if (!refiner) fail(input + ": OpenSubdiv refused the mesh (see its message above)");
+        Clock::time_point t1 = Clock::now();
+
+        refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+        Clock::time_point t2 = Clock::now();
+        perLevel.assign(levels + 1, std::vector<Point3>());
+        perLevel[0].resize(numVertices);
+        for (int v = 0; v < numVertices; ++v)
+            for (int k = 0; k < 3; ++k) perLevel[0][v].p[k] = mesh.positions[3 * v + k];
+        Far::PrimvarRefinerReal<double> primvar(*refiner);  // double weights too
+        for (int level = 1; level <= levels; ++level) {
+            perLevel[level].resize(refiner->GetLevel(level).GetNumVertices());
+            Point3 const * src = perLevel[level - 1].data();
+            Point3 * dst = perLevel[level].data();
+            primvar.Interpolate(level, src, dst);
+        }
+        Clock::time_point t3 = Clock::now();
+        buildTime = seconds(t1 - t0);
+        refineTimes.push_back(seconds(t2 - t1));
+        interpolateTimes.push_back(seconds(t3 - t2));
+        totalTimes.push_back(seconds(t3 - t1));
+    }
+    if (repeats > 0) {
+        auto best = [](std::vector<double> v) { return *std::min_element(v.begin(), v.end()); };
+        auto median = [](std::vector<double> v) {
+            std::sort(v.begin(), v.end());
+            return v[v.size() / 2];
+        };
+        Far::TopologyLevel const & last = refiner->GetLevel(levels);
+        std::fprintf(stderr,
+                     "osd_refine: %s level %d: %d vertices, %d faces; %d runs, best (median) seconds:\n"
+                     "  create (TopologyRefinerFactory::Create) %.6f\n"
+                     "  refine (RefineUniform)                  %.6f (%.6f)\n"
+                     "  interpolate (PrimvarRefiner, double)    %.6f (%.6f)\n"
+                     "  refine + interpolate                    %.6f (%.6f)\n",
+                     input.c_str(), levels, last.GetNumVertices(), last.GetNumFaces(), (int)totalTimes.size(),
+                     buildTime, best(refineTimes), median(refineTimes), best(interpolateTimes),
+                     median(interpolateTimes), best(totalTimes), median(totalTimes));
+    }
+
+    if (noOutput) return 0;
+    Far::TopologyLevel const & last = refiner->GetLevel(levels);
+    std::vector<Point3> const & points = perLevel[levels];
+    std::FILE * out = stdout;
+    if (!output.empty() && output != "-") {
+        out = std::fopen(output.c_str(), "w");
+        if (!out) fail("cannot write '" + output + "'");
+    }
+    std::vector<char> buffer(1 << 20);
+    std::setvbuf(out, buffer.data(), _IOFBF, buffer.size());
+    for (Point3 const & p : points) std::fprintf(out, "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        if (last.IsFaceHole(f)) continue;
+        Far::ConstIndexArray fv = last.GetFaceVertices(f);
+        std::fputc('f', out);
+        for (int k = 0; k < fv.size(); ++k) std::fprintf(out, " %d", fv[k] + 1);
+        std::fputc('\n', out);
+    }
+    if (std::fflush(out) != 0 || (out != stdout && std::fclose(out) != 0)) fail("write failed");
+    return 0;
+}
