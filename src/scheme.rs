@@ -84,12 +84,8 @@ pub enum Boundary {
 }
 
 impl Boundary {
-    pub const ALL: &'static [Boundary] = &[
-        Boundary::EdgeAndCorner,
-        Boundary::EdgeOnly,
-        Boundary::Fixed,
-        Boundary::Average,
-    ];
+    pub const ALL: &'static [Boundary] =
+        &[Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -108,16 +104,10 @@ fn parse_name<T: Copy>(
     all: &[T],
     name: fn(T) -> &'static str,
 ) -> Result<T> {
-    all.iter()
-        .copied()
-        .find(|&t| name(t) == value)
-        .ok_or_else(|| {
-            let allowed: Vec<_> = all.iter().map(|&t| format!("'{}'", name(t))).collect();
-            Error::InvalidOption(format!(
-                "unknown {what} '{value}'; use one of {}",
-                allowed.join(", ")
-            ))
-        })
+    all.iter().copied().find(|&t| name(t) == value).ok_or_else(|| {
+        let allowed: Vec<_> = all.iter().map(|&t| format!("'{}'", name(t))).collect();
+        Error::InvalidOption(format!("unknown {what} '{value}'; use one of {}", allowed.join(", ")))
+    })
 }
 
 impl FromStr for Scheme {
@@ -174,10 +164,7 @@ impl Default for Options {
 impl Options {
     /// `levels` levels of one scheme.
     pub fn new(scheme: Scheme, levels: u32) -> Self {
-        Options {
-            schemes: vec![scheme; levels as usize],
-            ..Options::default()
-        }
+        Options { schemes: vec![scheme; levels as usize], ..Options::default() }
     }
 
     pub fn with_boundary(mut self, boundary: Boundary) -> Self {
@@ -193,13 +180,9 @@ impl Options {
 /// Predicted `(vertices, faces)` after all levels, saturating instead of overflowing. Exact for
 /// the primal schemes; for Doo-Sabin an upper bound.
 pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
-    let mut counts = [
-        mesh.num_vertices(),
-        mesh.num_edges(),
-        mesh.num_half_edges(),
-        mesh.num_cells(),
-    ]
-    .map(|n| n as u64);
+    let mut counts =
+        [mesh.num_vertices(), mesh.num_edges(), mesh.num_half_edges(), mesh.num_cells()]
+            .map(|n| n as u64);
     for scheme in &options.schemes {
         let [v, e, h, f] = counts;
         counts = match scheme {
@@ -240,11 +223,7 @@ fn check_scheme(
             .find(|&c| mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize] != 3)
         {
             let n = mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize];
-            let when = if level == 0 {
-                "the input"
-            } else {
-                "the previous level's result"
-            };
+            let when = if level == 0 { "the input" } else { "the previous level's result" };
             return Err(at(format!(
                 "{scheme} is defined on triangles only, but face {c} of {when} has {n} vertices; use 'quad-triangle' for meshes with quads, or triangulate first"
             )));
@@ -285,10 +264,7 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
             Scheme::QuadTriangle => {
                 let linear = HalfEdgeMesh::from_poly(&quad_tri::linear_split(&mesh))?;
                 let positions = quad_tri::smooth(&linear, &QuadTriangle { boundary });
-                Level::Poly(PolyMesh {
-                    positions,
-                    ..linear.to_poly()
-                })
+                Level::Poly(PolyMesh { positions, ..linear.to_poly() })
             }
             Scheme::DooSabin => {
                 let mode = if boundary == Boundary::None {
@@ -323,11 +299,7 @@ fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> L
         pqq::refine_points(&mesh, rules, positions.as_chunks_mut::<3>().0);
         let indices = pqq::child_face_indices(&mesh);
         let face_sizes = vec![4; mesh.num_half_edges()];
-        return Level::Poly(PolyMesh {
-            positions,
-            indices,
-            face_sizes,
-        });
+        return Level::Poly(PolyMesh { positions, indices, face_sizes });
     }
     let mut positions = vec![[0.0f32; 3]; count];
     pqq::refine_points(&mesh, rules, &mut positions);
@@ -339,9 +311,5 @@ fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Level {
     ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
     let indices = ptq::child_face_indices(mesh);
     let face_sizes = vec![3; indices.len() / 3];
-    Level::Poly(PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    })
+    Level::Poly(PolyMesh { positions, indices, face_sizes })
 }

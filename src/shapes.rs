@@ -16,9 +16,7 @@ pub fn cube() -> PolyMesh {
     }
     PolyMesh {
         positions,
-        indices: vec![
-            0, 4, 5, 1, 4, 6, 7, 5, 6, 2, 3, 7, 2, 0, 1, 3, 1, 5, 7, 3, 0, 2, 6, 4,
-        ],
+        indices: vec![0, 4, 5, 1, 4, 6, 7, 5, 6, 2, 3, 7, 2, 0, 1, 3, 1, 5, 7, 3, 0, 2, 6, 4],
         face_sizes: vec![4; 6],
     }
 }
@@ -48,11 +46,7 @@ pub fn torus(rings: u32, segments: u32, major: f32, minor: f32) -> PolyMesh {
             indices.extend_from_slice(&[v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes: vec![4; (rings * segments) as usize],
-    }
+    PolyMesh { positions, indices, face_sizes: vec![4; (rings * segments) as usize] }
 }
 
 /// The same torus with every quad split into two triangles along its `v(i,j)–v(i+1,j+1)`
@@ -91,11 +85,7 @@ pub fn grid_with_hole(
         }
     }
     let faces = indices.len() / 4;
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes: vec![4; faces],
-    }
+    PolyMesh { positions, indices, face_sizes: vec![4; faces] }
 }
 
 /// A closed prism over a regular `n`-gon: two `n`-gon caps and `n` quad sides.
@@ -116,11 +106,7 @@ pub fn prism(n: u32) -> PolyMesh {
         indices.extend_from_slice(&[k, k1, n + k1, n + k]);
         face_sizes.push(4);
     }
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    }
+    PolyMesh { positions, indices, face_sizes }
 }
 
 /// Splits every quad `(a, b, c, d)` of `mesh` into `(a, b, c)` and `(a, c, d)`; other faces
@@ -142,9 +128,85 @@ pub fn triangulate_quads(mesh: &PolyMesh) -> PolyMesh {
         }
         start += n as usize;
     }
-    PolyMesh {
-        positions: mesh.positions.clone(),
-        indices,
-        face_sizes,
+    PolyMesh { positions: mesh.positions.clone(), indices, face_sizes }
+}
+
+/// A regular icosahedron with vertices on the unit sphere: 12 vertices, 20 triangles.
+pub fn icosahedron() -> PolyMesh {
+    let phi = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut points = Vec::with_capacity(12);
+    for (a, b) in [(1.0f32, phi), (-1.0, phi), (1.0, -phi), (-1.0, -phi)] {
+        points.push([0.0, a, b]);
+        points.push([a, b, 0.0]);
+        points.push([b, 0.0, a]);
     }
+    let norm = (1.0 + phi * phi).sqrt();
+    let points: Vec<[f32; 3]> = points.iter().map(|p| p.map(|x| x / norm)).collect();
+    // Faces are the triples of mutually adjacent vertices (edge length 2 / norm), wound so the
+    // normal points away from the centre.
+    let edge = 2.0 / norm;
+    let adjacent = |i: usize, j: usize| (dist(points[i], points[j]) - edge).abs() < 1e-3;
+    let mut indices = Vec::with_capacity(60);
+    for i in 0..12 {
+        for j in i + 1..12 {
+            for k in j + 1..12 {
+                if adjacent(i, j) && adjacent(j, k) && adjacent(i, k) {
+                    let (a, b, c) = (points[i], points[j], points[k]);
+                    let n = cross(sub(b, a), sub(c, a));
+                    let outward = n[0] * a[0] + n[1] * a[1] + n[2] * a[2] > 0.0;
+                    let tri = if outward { [i, j, k] } else { [i, k, j] };
+                    indices.extend(tri.map(|v| v as u32));
+                }
+            }
+        }
+    }
+    PolyMesh { positions: points.as_flattened().to_vec(), indices, face_sizes: vec![3; 20] }
+}
+
+/// A regular dodecahedron, the dual of [`icosahedron`]: 20 vertices, 12 pentagons.
+pub fn dodecahedron() -> PolyMesh {
+    let ico = icosahedron();
+    let mut positions = Vec::with_capacity(60);
+    for tri in ico.indices.chunks_exact(3) {
+        let c = [0, 1, 2]
+            .map(|k| tri.iter().map(|&v| ico.positions[3 * v as usize + k]).sum::<f32>() / 3.0);
+        let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        positions.extend(c.map(|x| x / len));
+    }
+    // Around each icosahedron vertex, its five triangles in order: each next triangle shares
+    // the edge (v, w) where w follows v in the current one.
+    let mut indices = Vec::with_capacity(60);
+    for v in 0..12u32 {
+        let corner = |t: usize| (0..3).find(|&k| ico.indices[3 * t + k] == v);
+        let Some(first) = (0..20).find(|&t| corner(t).is_some()) else {
+            continue;
+        };
+        let mut t = first;
+        for _ in 0..5 {
+            indices.push(t as u32);
+            let Some(k) = corner(t) else { break };
+            let prev = ico.indices[3 * t + (k + 2) % 3];
+            // The triangle on the other side of edge (prev, v) contains v followed by prev.
+            let Some(next) = (0..20)
+                .find(|&s| corner(s).is_some_and(|m| ico.indices[3 * s + (m + 1) % 3] == prev))
+            else {
+                break;
+            };
+            t = next;
+        }
+    }
+    PolyMesh { positions, indices, face_sizes: vec![5; 12] }
+}
+
+fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn dist(a: [f32; 3], b: [f32; 3]) -> f32 {
+    let d = sub(a, b);
+    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
 }

@@ -9,19 +9,11 @@ use subsurf::shapes::{cube, grid, grid_with_hole};
 use subsurf::{subdivide, Boundary, HalfEdgeMesh, Options, PolyMesh, Scheme};
 
 fn cc(mesh: &PolyMesh, levels: u32, boundary: Boundary) -> PolyMesh {
-    subdivide(
-        mesh,
-        &Options::new(Scheme::CatmullClark, levels).with_boundary(boundary),
-    )
-    .unwrap()
+    subdivide(mesh, &Options::new(Scheme::CatmullClark, levels).with_boundary(boundary)).unwrap()
 }
 
-const MODES: [Boundary; 4] = [
-    Boundary::EdgeAndCorner,
-    Boundary::EdgeOnly,
-    Boundary::Fixed,
-    Boundary::Average,
-];
+const MODES: [Boundary; 4] =
+    [Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average];
 
 /// Counts formulas: V' = V + E + F and F' = Σ face sizes (= number of half-edges).
 #[test]
@@ -37,10 +29,7 @@ fn counts_follow_the_formulas() {
                 "{name} L{level}"
             );
             assert_eq!(next.num_faces(), he.num_half_edges(), "{name} L{level}");
-            assert!(
-                next.face_sizes.iter().all(|&n| n == 4),
-                "{name} L{level}: all quads"
-            );
+            assert!(next.face_sizes.iter().all(|&n| n == 4), "{name} L{level}: all quads");
             current = next;
         }
     }
@@ -55,11 +44,7 @@ fn euler_characteristic_and_closedness_are_kept() {
             let out = cc(&mesh, level, Boundary::EdgeAndCorner);
             assert_eq!(euler_characteristic(&out), chi, "{name} L{level}");
             // Each boundary edge splits in two, so a closed mesh stays closed.
-            assert_eq!(
-                boundary_half_edges(&out),
-                boundary << level,
-                "{name} L{level}"
-            );
+            assert_eq!(boundary_half_edges(&out), boundary << level, "{name} L{level}");
         }
     }
 }
@@ -78,19 +63,12 @@ fn affine_invariance() {
     };
     for (name, mesh) in sample_meshes() {
         for mode in MODES {
-            let moved = PolyMesh {
-                positions: apply(&mesh.positions),
-                ..mesh.clone()
-            };
+            let moved = PolyMesh { positions: apply(&mesh.positions), ..mesh.clone() };
             let a = cc(&moved, 2, mode);
             let b = cc(&mesh, 2, mode);
             let b_moved = apply(&b.positions);
-            let worst = a
-                .positions
-                .iter()
-                .zip(&b_moved)
-                .map(|(x, y)| (x - y).abs())
-                .fold(0.0, f32::max);
+            let worst =
+                a.positions.iter().zip(&b_moved).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max);
             assert!(worst < 2e-5, "{name} {mode}: differs by {worst}");
             assert_eq!(a.indices, b.indices);
         }
@@ -130,9 +108,7 @@ fn seed_003_cube() {
     }
     assert_eq!(out.num_vertices(), 26);
     for e in &expected_vertices {
-        let hits = (0..26)
-            .filter(|&v| distance(position(&out, v), *e) < 1e-6)
-            .count();
+        let hits = (0..26).filter(|&v| distance(position(&out, v), *e) < 1e-6).count();
         assert_eq!(hits, 1, "seed vertex {e:?} should appear exactly once");
     }
 
@@ -199,11 +175,7 @@ fn regular_grid_reproduces_bicubic_b_spline() {
     for v in 0..out.num_vertices() {
         let [x, y, z] = position(&out, v);
         let (ci, cj) = ((2.0 * x).round() as u32, (2.0 * y).round() as u32);
-        assert_eq!(
-            (ci as f32 / 2.0, cj as f32 / 2.0),
-            (x, y),
-            "child {v} off the half lattice"
-        );
+        assert_eq!((ci as f32 / 2.0, cj as f32 / 2.0), (x, y), "child {v} off the half lattice");
         // Only children whose stencil uses no boundary rule: interior parent vertices, edges
         // off the boundary rows and columns, and every face.
         let interior = |c: u32| c % 2 == 1 || (c >= 2 && c <= 2 * n - 2);
@@ -216,10 +188,7 @@ fn regular_grid_reproduces_bicubic_b_spline() {
                 expected += wi * wj * height[(j * (n + 1) + i) as usize];
             }
         }
-        assert!(
-            (z - expected).abs() < 1e-6,
-            "child ({ci}, {cj}): {z} vs B-spline {expected}"
-        );
+        assert!((z - expected).abs() < 1e-6, "child ({ci}, {cj}): {z} vs B-spline {expected}");
         checked += 1;
     }
     // (2n - 1)² children have all-interior stencils.
@@ -235,11 +204,7 @@ fn fixed_boundary_keeps_boundary_vertices() {
     let mut seen = 0;
     for v in he.vertex_indices() {
         if he.vertex(v).unwrap().is_boundary() {
-            assert_eq!(
-                position(&out, v as usize),
-                position(&mesh, v as usize),
-                "vertex {v}"
-            );
+            assert_eq!(position(&out, v as usize), position(&mesh, v as usize), "vertex {v}");
             seen += 1;
         }
     }
@@ -272,11 +237,7 @@ fn edge_only_and_edge_and_corner_differ_only_at_corners() {
     let only = cc(&mesh, 1, Boundary::EdgeOnly);
     assert_eq!(position(&corner, 0), [0.0, 0.0, 1.0]);
     let expected = [(6.0 * 0.0 + 1.0 + 0.0) / 8.0, 1.0 / 8.0, 6.0 / 8.0];
-    assert!(
-        distance(position(&only, 0), expected) < 1e-6,
-        "{:?}",
-        position(&only, 0)
-    );
+    assert!(distance(position(&only, 0), expected) < 1e-6, "{:?}", position(&only, 0));
     let differing: Vec<usize> = (0..corner.num_vertices())
         .filter(|&v| distance(position(&corner, v), position(&only, v)) > 0.0)
         .collect();
@@ -293,10 +254,7 @@ fn level_zero_returns_the_input() {
 
 #[test]
 fn memory_guard_refuses_before_work() {
-    let options = Options {
-        max_faces: 1000,
-        ..Options::new(Scheme::CatmullClark, 4)
-    };
+    let options = Options { max_faces: 1000, ..Options::new(Scheme::CatmullClark, 4) };
     let err = subdivide(&cube(), &options).unwrap_err().to_string();
     // 6 quads × 4^4 = 1536 faces.
     assert!(err.contains("1536") && err.contains("maxFaces"), "{err}");

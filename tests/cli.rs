@@ -5,10 +5,7 @@ use subsurf::io::{read_obj, write_obj};
 use subsurf::shapes::cube;
 
 fn subsurf(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_subsurf"))
-        .args(args)
-        .output()
-        .expect("binary runs")
+    Command::new(env!("CARGO_BIN_EXE_subsurf")).args(args).output().expect("binary runs")
 }
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
@@ -35,19 +32,12 @@ fn subdivides_a_file() {
         output.to_str().unwrap(),
         "--stats",
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let mesh = read_obj(&std::fs::read_to_string(&output).unwrap()).unwrap();
     // Cube: 6 · 4² faces, 8 + 12·4... V2 = 98 (V1 = 26, E1 = 48, F1 = 24).
     assert_eq!((mesh.num_vertices(), mesh.num_faces()), (98, 96));
     let stats = String::from_utf8_lossy(&run.stderr);
-    assert!(
-        stats.contains("output      98 vertices, 96 faces"),
-        "{stats}"
-    );
+    assert!(stats.contains("output      98 vertices, 96 faces"), "{stats}");
     assert!(stats.contains("subdivide"), "{stats}");
 }
 
@@ -59,15 +49,9 @@ fn bad_input_exits_non_zero_with_a_message() {
     let path = input.to_str().unwrap();
     let cases: [(&[&str], &str); 6] = [
         (&[path], "OBJ line 4: face refers to vertex 5"),
-        (
-            &["--scheme", "loopy", path],
-            "unknown scheme 'loopy'; use one of 'catmull-clark'",
-        ),
+        (&["--scheme", "loopy", path], "unknown scheme 'loopy'; use one of 'catmull-clark'"),
         (&["--boundary", "none", path], "unknown boundary 'none'"),
-        (
-            &["--levels", "-1", path],
-            "--levels '-1' is not a whole number",
-        ),
+        (&["--levels", "-1", path], "--levels '-1' is not a whole number"),
         (&["--frobnicate", path], "unknown option '--frobnicate'"),
         (&["/nonexistent/x.obj"], "cannot read '/nonexistent/x.obj'"),
     ];

@@ -6,9 +6,7 @@ use subsurf::{Error, HalfEdgeMesh};
 
 fn quad_strip() -> HalfEdgeMesh {
     // Two quads sharing edge 1-4:  3-4-5 / 0-1-2
-    let positions = [
-        0., 0., 0., 1., 0., 0., 2., 0., 0., 0., 1., 0., 1., 1., 0., 2., 1., 0.,
-    ];
+    let positions = [0., 0., 0., 1., 0., 0., 2., 0., 0., 0., 1., 0., 1., 1., 0., 2., 1., 0.];
     HalfEdgeMesh::from_faces(&positions, &[0, 1, 4, 3, 1, 2, 5, 4], &[4, 4]).unwrap()
 }
 
@@ -16,12 +14,7 @@ fn quad_strip() -> HalfEdgeMesh {
 fn counts_and_indices() {
     let m = HalfEdgeMesh::from_poly(&cube()).unwrap();
     assert_eq!(
-        (
-            m.num_vertices(),
-            m.num_half_edges(),
-            m.num_cells(),
-            m.num_edges()
-        ),
+        (m.num_vertices(), m.num_half_edges(), m.num_cells(), m.num_edges()),
         (8, 24, 6, 12)
     );
     assert_eq!(m.max_vertex_index(), Some(7));
@@ -31,10 +24,7 @@ fn counts_and_indices() {
     assert_eq!(m.cell_indices().count(), 6);
     assert!(m.vertex(8).is_none() && m.half_edge(24).is_none() && m.cell(6).is_none());
     let v = m.vertex(0).unwrap();
-    assert_eq!(
-        (v.dimension(), v.coord(0), v.coord(3)),
-        (3, Some(-1.0), None)
-    );
+    assert_eq!((v.dimension(), v.coord(0), v.coord(3)), (3, Some(-1.0), None));
     // Every cube vertex has valence 3 and no boundary.
     for v in m.vertex_indices() {
         let v = m.vertex(v).unwrap();
@@ -48,32 +38,19 @@ fn counts_and_indices() {
 fn half_edge_navigation() {
     let m = quad_strip();
     let h = m.vertex(1).unwrap().find_half_edge_to(4).unwrap();
-    assert_eq!(
-        (h.from_vertex_index(), h.to_vertex_index(), h.cell_index()),
-        (1, 4, 0)
-    );
+    assert_eq!((h.from_vertex_index(), h.to_vertex_index(), h.cell_index()), (1, 4, 0));
     assert_eq!(h.next_in_cell().to_vertex_index(), 3);
     assert_eq!(h.prev_in_cell().from_vertex_index(), 0);
     assert_eq!(h.next_in_cell().prev_in_cell().index(), h.index());
     let twin = h.next_around_edge();
-    assert_eq!(
-        (
-            twin.from_vertex_index(),
-            twin.to_vertex_index(),
-            twin.cell_index()
-        ),
-        (4, 1, 1)
-    );
+    assert_eq!((twin.from_vertex_index(), twin.to_vertex_index(), twin.cell_index()), (4, 1, 1));
     assert_eq!(twin.next_around_edge().index(), h.index());
     assert_eq!(twin.edge_index(), h.edge_index());
     assert!(!h.is_boundary());
     // prev around the from-vertex: across the edge before h in its cell.
     let g = m.vertex(1).unwrap().find_half_edge_to(2).unwrap();
     assert_eq!(g.prev_around_from_vertex().index(), h.index());
-    assert_eq!(
-        m.vertex(1).unwrap().find_half_edge_to(3).map(|h| h.index()),
-        None
-    );
+    assert_eq!(m.vertex(1).unwrap().find_half_edge_to(3).map(|h| h.index()), None);
     assert_eq!(m.cell(1).unwrap().vertex_indices(), &[1, 2, 5, 4]);
     assert_eq!(m.cell(1).unwrap().half_edge().from_vertex_index(), 1);
     assert_eq!(m.num_edges(), 7);
@@ -88,17 +65,11 @@ fn kth_half_edge_from_zero_is_boundary() {
         let vertex = m.vertex(v).unwrap();
         let has_boundary_out = vertex.half_edges_from().any(|h| h.is_boundary());
         if has_boundary_out {
-            assert!(
-                vertex.kth_half_edge_from(0).unwrap().is_boundary(),
-                "vertex {v}"
-            );
+            assert!(vertex.kth_half_edge_from(0).unwrap().is_boundary(), "vertex {v}");
         }
         // On a boundary, half-edges from = edges - 1.
         let edges = vertex.half_edges_from().count()
-            + vertex
-                .half_edges_from()
-                .filter(|h| h.prev_in_cell().is_boundary())
-                .count();
+            + vertex.half_edges_from().filter(|h| h.prev_in_cell().is_boundary()).count();
         assert_eq!(
             vertex.num_half_edges_from() + usize::from(vertex.is_boundary()),
             edges,
@@ -122,23 +93,15 @@ fn non_manifold_edge_is_a_cycle() {
     }
     assert_eq!(cycle.len(), 3);
     assert_eq!(m.edge_half_edges(h.edge_index()).unwrap().len(), 3);
-    assert!(matches!(
-        m.first_non_manifold(),
-        Some(NonManifold::Edge { from: 0, to: 1, .. })
-    ));
+    assert!(matches!(m.first_non_manifold(), Some(NonManifold::Edge { from: 0, to: 1, .. })));
 }
 
 #[test]
 fn non_manifold_vertex_is_found() {
     // Two triangles touching at vertex 0 only (a bow tie).
-    let positions = [
-        0., 0., 0., 1., 0., 0., 1., 1., 0., -1., 0., 0., -1., -1., 0.,
-    ];
+    let positions = [0., 0., 0., 1., 0., 0., 1., 1., 0., -1., 0., 0., -1., -1., 0.];
     let m = HalfEdgeMesh::from_faces(&positions, &[0, 1, 2, 0, 3, 4], &[3, 3]).unwrap();
-    assert_eq!(
-        m.first_non_manifold(),
-        Some(NonManifold::Vertex { vertex: 0 })
-    );
+    assert_eq!(m.first_non_manifold(), Some(NonManifold::Vertex { vertex: 0 }));
 }
 
 #[test]

@@ -37,20 +37,12 @@ fn errors_name_the_line() {
     assert!(line == 4 && msg.contains("vertex 9"), "{line} {msg}");
     let (line, msg) = obj_error("v 0 0\n");
     assert!(line == 1 && msg.contains("2 coordinates"), "{msg}");
-    assert!(obj_error("v 0 zero 0\n")
-        .1
-        .contains("'zero' is not a number"));
+    assert!(obj_error("v 0 zero 0\n").1.contains("'zero' is not a number"));
     assert!(obj_error("v 0 1e999 0\n").1.contains("not a finite"));
     assert!(obj_error(&format!("{v}f 1 2\n")).1.contains("2 vertices"));
-    assert!(obj_error(&format!("{v}f 1 2 x\n"))
-        .1
-        .contains("'x' is not a face index"));
-    assert!(obj_error(&format!("{v}f 1 -7 2\n"))
-        .1
-        .contains("before the first vertex"));
-    assert!(obj_error(&format!("{v}f 1 2 99999999999\n"))
-        .1
-        .contains("too large"));
+    assert!(obj_error(&format!("{v}f 1 2 x\n")).1.contains("'x' is not a face index"));
+    assert!(obj_error(&format!("{v}f 1 -7 2\n")).1.contains("before the first vertex"));
+    assert!(obj_error(&format!("{v}f 1 2 99999999999\n")).1.contains("too large"));
     assert!(obj_error(&format!("{v}f 1 2 1\n")).1.contains("twice"));
     assert!(obj_error("# nothing\n").1.contains("no 'v' lines"));
 }

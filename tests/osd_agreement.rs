@@ -44,25 +44,15 @@ struct Entry {
 
 impl Entry {
     fn label(&self) -> String {
-        let shape = Path::new(&self.input)
-            .file_stem()
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        format!(
-            "{shape} [{} boundary, level {}] ({})",
-            self.boundary, self.level, self.fixture
-        )
+        let shape = Path::new(&self.input).file_stem().unwrap().to_string_lossy().into_owned();
+        format!("{shape} [{} boundary, level {}] ({})", self.boundary, self.level, self.fixture)
     }
 }
 
 fn read_manifest(dir: &Path) -> Vec<Entry> {
     let path = dir.join("MANIFEST.tsv");
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
-        panic!(
-            "cannot read {}: {e}; run tools/osd/make_fixtures.sh",
-            path.display()
-        )
+        panic!("cannot read {}: {e}; run tools/osd/make_fixtures.sh", path.display())
     });
     let mut entries = Vec::new();
     for (n, line) in text.lines().enumerate() {
@@ -70,12 +60,7 @@ fn read_manifest(dir: &Path) -> Vec<Entry> {
             continue;
         }
         let cols: Vec<&str> = line.split('\t').collect();
-        assert!(
-            cols.len() >= 5,
-            "{}:{}: expected 5 tab-separated columns",
-            path.display(),
-            n + 1
-        );
+        assert!(cols.len() >= 5, "{}:{}: expected 5 tab-separated columns", path.display(), n + 1);
         entries.push(Entry {
             fixture: cols[0].to_string(),
             scheme: cols[1].to_string(),
@@ -98,10 +83,7 @@ struct RefMesh {
 fn read_fixture(path: &Path) -> RefMesh {
     let text = std::fs::read_to_string(path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let mut mesh = RefMesh {
-        positions: Vec::new(),
-        faces: Vec::new(),
-    };
+    let mut mesh = RefMesh { positions: Vec::new(), faces: Vec::new() };
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let bad = || format!("{}:{}: cannot parse '{line}'", path.display(), n + 1);
@@ -188,16 +170,14 @@ struct Compared {
 }
 
 /// Compares one fixture with our result; `Err` says what differs.
-fn compare(entry: &Entry) -> Result<Compared, String> {
-    let boundary: Boundary = entry
-        .boundary
-        .parse()
-        .map_err(|e| format!("manifest boundary: {e}"))?;
+fn compare(entry: &Entry, scheme: Scheme) -> Result<Compared, String> {
+    let boundary: Boundary =
+        entry.boundary.parse().map_err(|e| format!("manifest boundary: {e}"))?;
     let input_path = root().join(&entry.input);
     let text = std::fs::read_to_string(&input_path)
         .map_err(|e| format!("cannot read {}: {e}", input_path.display()))?;
     let input = read_obj(&text).map_err(|e| format!("{}: {e}", input_path.display()))?;
-    let options = Options::new(Scheme::CatmullClark, entry.level).with_boundary(boundary);
+    let options = Options::new(scheme, entry.level).with_boundary(boundary);
     let ours = subdivide(&input, &options).map_err(|e| format!("subdivide failed: {e}"))?;
     let reference = read_fixture(&root().join("tests/fixtures/osd").join(&entry.fixture));
 
@@ -212,12 +192,13 @@ fn compare(entry: &Entry) -> Result<Compared, String> {
             reference.faces.len()
         ));
     }
-    let correspondence = face_correspondence(&input.face_sizes, entry.level);
-    assert_eq!(
-        correspondence.len(),
-        our_faces.len(),
-        "correspondence covers every face"
-    );
+    // Our triangle split orders children as OpenSubdiv's Loop does: face i is face i.
+    let correspondence = if entry.scheme == "loop" {
+        (0..our_faces.len()).map(|i| (i, 0)).collect()
+    } else {
+        face_correspondence(&input.face_sizes, entry.level)
+    };
+    assert_eq!(correspondence.len(), our_faces.len(), "correspondence covers every face");
 
     // Vertex map from the face lists.
     const NONE: u32 = u32::MAX;
@@ -270,10 +251,7 @@ fn compare(entry: &Entry) -> Result<Compared, String> {
         .zip(&to_osd)
         .map(|(p, &w)| {
             let q = reference.positions[w as usize];
-            let d = (0..3)
-                .map(|k| (p[k] as f64 - q[k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
+            let d = (0..3).map(|k| (p[k] as f64 - q[k]).powi(2)).sum::<f64>().sqrt();
             if d.is_nan() {
                 f64::INFINITY
             } else {
@@ -282,10 +260,10 @@ fn compare(entry: &Entry) -> Result<Compared, String> {
         })
         .collect();
     let worst =
-        distances.iter().enumerate().fold(
-            (0.0f64, 0usize),
-            |best, (v, &d)| if d > best.0 { (d, v) } else { best },
-        );
+        distances
+            .iter()
+            .enumerate()
+            .fold((0.0f64, 0usize), |best, (v, &d)| if d > best.0 { (d, v) } else { best });
     if worst.0 > tolerance {
         let (v, w) = (worst.1, to_osd[worst.1] as usize);
         let p = &ours.positions[3 * v..3 * v + 3];
@@ -302,24 +280,27 @@ fn compare(entry: &Entry) -> Result<Compared, String> {
             tolerance
         ));
     }
-    Ok(Compared {
-        worst_distance: worst.0,
-        tolerance,
-    })
+    Ok(Compared { worst_distance: worst.0, tolerance })
 }
 
-/// Runs every Catmull-Clark fixture of `boundary` and fails listing all that disagree.
-fn run_group(boundary: &str) {
+/// Runs every fixture of OpenSubdiv scheme `osd_scheme` ("catmark" or "loop") and `boundary`
+/// through our `scheme`, and fails listing all that disagree. `only` keeps the fixtures whose
+/// input passes it (Quad/Triangle equals Catmull-Clark only on all-quad inputs).
+fn run_group(osd_scheme: &str, scheme: Scheme, boundary: &str, only: fn(&PolyMesh) -> bool) {
     let dir = root().join("tests/fixtures/osd");
     let filter = std::env::var("OSD_FIXTURE_FILTER").unwrap_or_default();
     let entries: Vec<Entry> = read_manifest(&dir)
         .into_iter()
-        .filter(|e| e.scheme == "catmark" && e.boundary == boundary && e.fixture.contains(&filter))
+        .filter(|e| e.scheme == osd_scheme && e.boundary == boundary && e.fixture.contains(&filter))
+        .filter(|e| {
+            let text = std::fs::read_to_string(root().join(&e.input)).unwrap_or_default();
+            read_obj(&text).is_ok_and(|m| only(&m))
+        })
         .collect();
     if filter.is_empty() {
         assert!(
             !entries.is_empty(),
-            "no Catmull-Clark {boundary} fixtures in {}/MANIFEST.tsv",
+            "no {osd_scheme} {boundary} fixtures in {}/MANIFEST.tsv",
             dir.display()
         );
     }
@@ -328,13 +309,9 @@ fn run_group(boundary: &str) {
     let mut worst_ratio = (0.0f64, String::new());
     for entry in &entries {
         shapes.insert(entry.input.clone());
-        match compare(entry) {
+        match compare(entry, scheme) {
             Ok(c) => {
-                let ratio = if c.tolerance > 0.0 {
-                    c.worst_distance / c.tolerance
-                } else {
-                    0.0
-                };
+                let ratio = if c.tolerance > 0.0 { c.worst_distance / c.tolerance } else { 0.0 };
                 if ratio >= worst_ratio.0 {
                     worst_ratio = (ratio, entry.label());
                 }
@@ -343,7 +320,7 @@ fn run_group(boundary: &str) {
         }
     }
     println!(
-        "osd_agreement {boundary}: {} comparisons on {} shapes, {} passed, {} failed; closest pass to the tolerance: \
+        "osd_agreement {scheme} vs {osd_scheme} {boundary}: {} comparisons on {} shapes, {} passed, {} failed; closest pass to the tolerance: \
          {:.3} x tolerance ({})",
         entries.len(),
         shapes.len(),
@@ -365,14 +342,37 @@ fn run_group(boundary: &str) {
     }
 }
 
+fn any(_: &PolyMesh) -> bool {
+    true
+}
+
+fn all_quads(m: &PolyMesh) -> bool {
+    m.face_sizes.iter().all(|&n| n == 4)
+}
+
 #[test]
 fn catmull_clark_edge_and_corner_matches_opensubdiv() {
-    run_group("edge-and-corner");
+    run_group("catmark", Scheme::CatmullClark, "edge-and-corner", any);
+}
+
+#[test]
+fn loop_matches_opensubdiv() {
+    run_group("loop", Scheme::Loop, "edge-and-corner", any);
+    run_group("loop", Scheme::Loop, "edge-only", any);
+}
+
+/// Quad/Triangle is Catmull-Clark on all-quad meshes and Loop on all-triangle meshes.
+#[test]
+fn quad_triangle_matches_opensubdiv_catmull_clark_and_loop() {
+    for boundary in ["edge-and-corner", "edge-only"] {
+        run_group("catmark", Scheme::QuadTriangle, boundary, all_quads);
+        run_group("loop", Scheme::QuadTriangle, boundary, any);
+    }
 }
 
 #[test]
 fn catmull_clark_edge_only_matches_opensubdiv() {
-    run_group("edge-only");
+    run_group("catmark", Scheme::CatmullClark, "edge-only", any);
 }
 
 #[test]
@@ -380,11 +380,7 @@ fn manifests_name_existing_files() {
     for dir in ["tests/fixtures/osd", "tests/fixtures/osd_tagged"] {
         let dir = root().join(dir);
         let entries = read_manifest(&dir);
-        assert!(
-            !entries.is_empty(),
-            "{}/MANIFEST.tsv lists no fixtures",
-            dir.display()
-        );
+        assert!(!entries.is_empty(), "{}/MANIFEST.tsv lists no fixtures", dir.display());
         for e in entries {
             assert!(
                 dir.join(&e.fixture).is_file(),

@@ -38,11 +38,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut levels: Option<u32> = None;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
-        let mut value = |flag: &str| {
-            it.next()
-                .cloned()
-                .ok_or_else(|| format!("{flag} needs a value"))
-        };
+        let mut value =
+            |flag: &str| it.next().cloned().ok_or_else(|| format!("{flag} needs a value"));
         match arg.as_str() {
             "--scheme" => {
                 parsed.schemes =
@@ -59,9 +56,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             }
             "--max-faces" => {
                 let v = value("--max-faces")?;
-                parsed.max_faces = v
-                    .parse()
-                    .map_err(|_| format!("--max-faces '{v}' is not a whole number"))?;
+                parsed.max_faces =
+                    v.parse().map_err(|_| format!("--max-faces '{v}' is not a whole number"))?;
             }
             "--stats" => parsed.stats = true,
             "-o" | "--output" => parsed.output = Some(value("-o")?),
@@ -127,26 +123,15 @@ fn run(args: Args) -> Result<(), String> {
     if args.stats {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         let names: Vec<&str> = args.schemes.iter().map(|s| s.name()).collect();
-        eprintln!(
-            "schemes     {} ({} boundary)",
-            names.join(","),
-            args.boundary
-        );
+        eprintln!("schemes     {} ({} boundary)", names.join(","), args.boundary);
         eprintln!("input       {in_v} vertices, {in_e} edges, {in_f} faces");
-        eprintln!(
-            "output      {} vertices, {} faces",
-            output.num_vertices(),
-            output.num_faces()
-        );
+        eprintln!("output      {} vertices, {} faces", output.num_vertices(), output.num_faces());
         eprintln!("read        {:.3} ms", ms(read_time));
         eprintln!("build       {:.3} ms", ms(build_time));
         eprintln!("subdivide   {:.3} ms", ms(refine_time));
         eprintln!("write       {:.3} ms", ms(write_time));
         let rate = output.num_faces() as f64 / (build_time + refine_time).as_secs_f64();
-        eprintln!(
-            "throughput  {:.1} M output faces/s (build + subdivide)",
-            rate / 1e6
-        );
+        eprintln!("throughput  {:.1} M output faces/s (build + subdivide)", rate / 1e6);
     }
     Ok(())
 }

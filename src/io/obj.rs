@@ -9,10 +9,7 @@ use crate::mesh::PolyMesh;
 use std::fmt::Write as _;
 
 fn obj_error(line: usize, message: impl Into<String>) -> Error {
-    Error::Obj {
-        line,
-        message: message.into(),
-    }
+    Error::Obj { line, message: message.into() }
 }
 
 /// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, repeated vertices, NaN)
@@ -30,10 +27,7 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
                 let mut xyz = [0.0f32; 3];
                 for (k, slot) in xyz.iter_mut().enumerate() {
                     let word = words.next().ok_or_else(|| {
-                        obj_error(
-                            line_no,
-                            format!("vertex has {k} coordinates; 'v' needs x y z"),
-                        )
+                        obj_error(line_no, format!("vertex has {k} coordinates; 'v' needs x y z"))
                     })?;
                     *slot = parse_coordinate(word, line_no)?;
                 }
@@ -93,14 +87,10 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
 }
 
 fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
-    let value: f32 = word
-        .parse()
-        .map_err(|_| obj_error(line, format!("'{word}' is not a number")))?;
+    let value: f32 =
+        word.parse().map_err(|_| obj_error(line, format!("'{word}' is not a number")))?;
     if !value.is_finite() {
-        return Err(obj_error(
-            line,
-            format!("coordinate '{word}' is not a finite 32-bit number"),
-        ));
+        return Err(obj_error(line, format!("coordinate '{word}' is not a finite 32-bit number")));
     }
     Ok(value)
 }
@@ -108,16 +98,10 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
 /// The 0-based position index of a face corner such as `7`, `7/2`, `7//3`, `-1/2/3`.
 fn parse_face_index(word: &str, vertex_count: usize, line: usize) -> Result<u32> {
     let first = word.split('/').next().unwrap_or("");
-    let value: i64 = first
-        .parse()
-        .map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
+    let value: i64 =
+        first.parse().map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
     let resolved = match value {
-        0 => {
-            return Err(obj_error(
-                line,
-                "face index 0 is not allowed; OBJ indices start at 1",
-            ))
-        }
+        0 => return Err(obj_error(line, "face index 0 is not allowed; OBJ indices start at 1")),
         v if v > 0 => v - 1,
         v => {
             let r = vertex_count as i64 + v;

@@ -32,10 +32,7 @@ pub(super) fn from_faces(
     }
 
     let mut mesh = HalfEdgeMesh {
-        positions: positions
-            .chunks_exact(3)
-            .map(|p| [p[0], p[1], p[2]])
-            .collect(),
+        positions: positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
         cell_offsets,
         he_from: indices.to_vec(),
         he_cell,
@@ -56,9 +53,7 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
         )));
     }
     if positions.is_empty() {
-        return Err(Error::mesh(
-            "positions is empty; a mesh needs at least one vertex",
-        ));
+        return Err(Error::mesh("positions is empty; a mesh needs at least one vertex"));
     }
     if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
         return Err(Error::mesh(format!(
@@ -92,9 +87,7 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     for (f, &n) in face_sizes.iter().enumerate() {
         let n = n as usize;
         if n < 3 {
-            return Err(Error::mesh(format!(
-                "face {f} has {n} vertices; a face needs at least 3"
-            )));
+            return Err(Error::mesh(format!("face {f} has {n} vertices; a face needs at least 3")));
         }
         let face = &indices[start..start + n];
         for (k, &v) in face.iter().enumerate() {
@@ -200,11 +193,7 @@ fn build_edges(mesh: &mut HalfEdgeMesh, out_to: &[u32]) {
         let list = &mut edge_half_edges[filled..filled + run.len() + opposite.len()];
         filled += list.len();
         edge_offsets.push(filled as u32);
-        merge_sorted(
-            &mesh.vertex_half_edges[run],
-            &mesh.vertex_half_edges[opposite],
-            list,
-        );
+        merge_sorted(&mesh.vertex_half_edges[run], &mesh.vertex_half_edges[opposite], list);
         for (i, &h) in list.iter().enumerate() {
             he_edge[h as usize] = e;
             he_next_around_edge[h as usize] = list[(i + 1) % list.len()];

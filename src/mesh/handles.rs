@@ -51,10 +51,7 @@ impl<'a> VertexRef<'a> {
     /// The `k`-th half-edge leaving this vertex; `k = 0` is a boundary half-edge when there is one.
     pub fn kth_half_edge_from(&self, k: usize) -> Option<HalfEdgeRef<'a>> {
         let h = *self.mesh.out_half_edges(self.index).get(k)?;
-        Some(HalfEdgeRef {
-            mesh: self.mesh,
-            index: h,
-        })
+        Some(HalfEdgeRef { mesh: self.mesh, index: h })
     }
 
     /// The half-edge from this vertex to `to`, if a cell has one.
@@ -69,24 +66,18 @@ impl<'a> VertexRef<'a> {
     /// Half-edges leaving this vertex.
     pub fn half_edges_from(&self) -> impl Iterator<Item = HalfEdgeRef<'a>> + 'a {
         let mesh = self.mesh;
-        mesh.out_half_edges(self.index)
-            .iter()
-            .map(move |&h| HalfEdgeRef { mesh, index: h })
+        mesh.out_half_edges(self.index).iter().map(move |&h| HalfEdgeRef { mesh, index: h })
     }
 
     /// True when a boundary edge touches this vertex.
     pub fn is_boundary(&self) -> bool {
-        self.half_edges_from()
-            .any(|h| h.is_boundary() || h.prev_in_cell().is_boundary())
+        self.half_edges_from().any(|h| h.is_boundary() || h.prev_in_cell().is_boundary())
     }
 }
 
 impl<'a> HalfEdgeRef<'a> {
     fn at(&self, index: u32) -> HalfEdgeRef<'a> {
-        HalfEdgeRef {
-            mesh: self.mesh,
-            index,
-        }
+        HalfEdgeRef { mesh: self.mesh, index }
     }
 
     pub fn index(&self) -> u32 {
@@ -102,17 +93,11 @@ impl<'a> HalfEdgeRef<'a> {
     }
 
     pub fn from_vertex(&self) -> VertexRef<'a> {
-        VertexRef {
-            mesh: self.mesh,
-            index: self.from_vertex_index(),
-        }
+        VertexRef { mesh: self.mesh, index: self.from_vertex_index() }
     }
 
     pub fn to_vertex(&self) -> VertexRef<'a> {
-        VertexRef {
-            mesh: self.mesh,
-            index: self.to_vertex_index(),
-        }
+        VertexRef { mesh: self.mesh, index: self.to_vertex_index() }
     }
 
     pub fn cell_index(&self) -> u32 {
@@ -120,10 +105,7 @@ impl<'a> HalfEdgeRef<'a> {
     }
 
     pub fn cell(&self) -> CellRef<'a> {
-        CellRef {
-            mesh: self.mesh,
-            index: self.cell_index(),
-        }
+        CellRef { mesh: self.mesh, index: self.cell_index() }
     }
 
     /// The edge this half-edge lies on, an index into the mesh's edge arrays.
@@ -164,10 +146,7 @@ impl<'a> CellRef<'a> {
 
     /// The cell's first half-edge, from its first listed vertex.
     pub fn half_edge(&self) -> HalfEdgeRef<'a> {
-        HalfEdgeRef {
-            mesh: self.mesh,
-            index: self.mesh.cell_offsets[self.index as usize],
-        }
+        HalfEdgeRef { mesh: self.mesh, index: self.mesh.cell_offsets[self.index as usize] }
     }
 
     pub fn num_vertices(&self) -> usize {

@@ -87,24 +87,15 @@ impl HalfEdgeMesh {
     }
 
     pub fn vertex(&self, v: u32) -> Option<VertexRef<'_>> {
-        ((v as usize) < self.num_vertices()).then_some(VertexRef {
-            mesh: self,
-            index: v,
-        })
+        ((v as usize) < self.num_vertices()).then_some(VertexRef { mesh: self, index: v })
     }
 
     pub fn half_edge(&self, h: u32) -> Option<HalfEdgeRef<'_>> {
-        ((h as usize) < self.num_half_edges()).then_some(HalfEdgeRef {
-            mesh: self,
-            index: h,
-        })
+        ((h as usize) < self.num_half_edges()).then_some(HalfEdgeRef { mesh: self, index: h })
     }
 
     pub fn cell(&self, c: u32) -> Option<CellRef<'_>> {
-        ((c as usize) < self.num_cells()).then_some(CellRef {
-            mesh: self,
-            index: c,
-        })
+        ((c as usize) < self.num_cells()).then_some(CellRef { mesh: self, index: c })
     }
 
     pub fn vertex_indices(&self) -> std::ops::Range<u32> {
@@ -158,8 +149,7 @@ impl HalfEdgeMesh {
     /// Adds `count` vertices at the origin and returns the index of the first.
     pub fn add_vertices(&mut self, count: u32) -> u32 {
         let first = self.num_vertices() as u32;
-        self.positions
-            .resize(first as usize + count as usize, [0.0; 3]);
+        self.positions.resize(first as usize + count as usize, [0.0; 3]);
         let total = *self.vertex_offsets.last().unwrap_or(&0);
         if self.vertex_offsets.is_empty() {
             self.vertex_offsets.push(0);
@@ -185,9 +175,7 @@ impl HalfEdgeMesh {
         }
         let n = self.num_vertices();
         let slot = self.positions.get_mut(v as usize).ok_or_else(|| {
-            crate::Error::mesh(format!(
-                "vertex {v} does not exist; the mesh has {n} vertices"
-            ))
+            crate::Error::mesh(format!("vertex {v} does not exist; the mesh has {n} vertices"))
         })?;
         *slot = coord;
         Ok(())
@@ -218,11 +206,7 @@ impl HalfEdgeMesh {
                 || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize]);
             if bad {
                 let [from, to] = self.edge_vertices[e];
-                return Some(NonManifold::Edge {
-                    edge: e as u32,
-                    from,
-                    to,
-                });
+                return Some(NonManifold::Edge { edge: e as u32, from, to });
             }
         }
         (0..self.num_vertices() as u32)

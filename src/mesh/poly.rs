@@ -23,11 +23,7 @@ impl PolyMesh {
     /// A fan triangulation of every face, as a WebGL index buffer. Faces are assumed convex enough
     /// for a fan; refined faces always are.
     pub fn triangles(&self) -> Vec<u32> {
-        let count: usize = self
-            .face_sizes
-            .iter()
-            .map(|&n| (n as usize).saturating_sub(2))
-            .sum();
+        let count: usize = self.face_sizes.iter().map(|&n| (n as usize).saturating_sub(2)).sum();
         let mut out = Vec::with_capacity(3 * count);
         let mut start = 0usize;
         for &n in &self.face_sizes {

@@ -128,9 +128,5 @@ pub fn refine<R: CornerRules>(mesh: &HalfEdgeMesh, rules: &R, boundary: DualBoun
         }
         face_sizes.push((indices.len() - first) as u32);
     }
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    }
+    PolyMesh { positions, indices, face_sizes }
 }

@@ -22,12 +22,7 @@ use crate::rules::QuadSplitRules;
 /// Child vertex, edge, half-edge and cell counts of one PQQ level, in `u64` so that a guard can
 /// compare them before anything is allocated.
 pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [u64; 4] {
-    [
-        vertices + cells + edges,
-        2 * edges + half_edges,
-        4 * half_edges,
-        half_edges,
-    ]
+    [vertices + cells + edges, 2 * edges + half_edges, 4 * half_edges, half_edges]
 }
 
 /// Number of child vertices: `V + F + E`.

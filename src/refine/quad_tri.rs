@@ -7,16 +7,14 @@
 //! midpoints]`; child faces follow the parent cells, four triangles per triangle (in the PTQ
 //! order) or `n` quads per `n`-gon (in the PQQ order).
 
+use super::ptq;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::rules::{centroid, edge_midpoint, AveragingRules};
 
 /// Child `[vertices, faces]` of one level, from the parent counts and the number of triangles
 /// `tris` (whose half-edges number `3 tris`).
 pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64, tris: u64) -> [u64; 2] {
-    [
-        vertices + (cells - tris) + edges,
-        4 * tris + (half_edges - 3 * tris),
-    ]
+    [vertices + (cells - tris) + edges, 4 * tris + (half_edges - 3 * tris)]
 }
 
 /// The linear split: positions at midpoints and centroids, and the child faces.
@@ -60,21 +58,8 @@ pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
         let edge_point = |i: usize| edge_base + mesh.he_edge[start + (i % n)];
         let corner = |i: usize| mesh.he_from[start + i];
         if k == u32::MAX {
-            let [e0, e1, e2] = [0, 1, 2].map(edge_point);
-            indices.extend_from_slice(&[
-                corner(0),
-                e0,
-                e2,
-                corner(1),
-                e1,
-                e0,
-                corner(2),
-                e2,
-                e1,
-                e0,
-                e1,
-                e2,
-            ]);
+            let corners = [corner(0), corner(1), corner(2)];
+            indices.extend_from_slice(&ptq::triangle_children(corners, [0, 1, 2].map(edge_point)));
             face_sizes.extend_from_slice(&[3; 4]);
         } else {
             let center = nv as u32 + k;
@@ -89,11 +74,7 @@ pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
             face_sizes.extend(std::iter::repeat_n(4, n));
         }
     }
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    }
+    PolyMesh { positions, indices, face_sizes }
 }
 
 /// Moves every vertex of the linearly refined `mesh` by the smoothing policy.

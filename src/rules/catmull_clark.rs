@@ -46,9 +46,8 @@ impl QuadSplitRules for CatmullClark {
     fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
         let v = vec3(mesh.positions[vertex as usize]);
         let mut faces = Vec3::ZERO;
-        let ring = ring(mesh, vertex, |h| {
-            faces += vec3(face_points[mesh.he_cell[h as usize] as usize])
-        });
+        let ring =
+            ring(mesh, vertex, |h| faces += vec3(face_points[mesh.he_cell[h as usize] as usize]));
         if ring.faces == 0 {
             return v;
         }

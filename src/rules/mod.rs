@@ -12,10 +12,10 @@ mod loop_subdivision;
 mod quad_triangle;
 
 pub use catmull_clark::CatmullClark;
-pub use doo_sabin::DooSabin;
+pub use doo_sabin::{doo_sabin_weight, DooSabin};
 pub use linear::{Bilinear, Midpoint};
-pub use loop_subdivision::Loop;
-pub use quad_triangle::QuadTriangle;
+pub use loop_subdivision::{loop_beta, Loop};
+pub use quad_triangle::{triangle_vertex_weight, QuadTriangle};
 
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
@@ -46,9 +46,7 @@ pub(crate) fn vec3(p: [f32; 3]) -> Vec3 {
 pub fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
     let c = cell as usize;
     let corners = &mesh.he_from[mesh.cell_offsets[c] as usize..mesh.cell_offsets[c + 1] as usize];
-    let sum = corners
-        .iter()
-        .fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
+    let sum = corners.iter().fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
     sum / corners.len() as f32
 }
 

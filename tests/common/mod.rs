@@ -12,17 +12,11 @@ pub fn euler_characteristic(mesh: &PolyMesh) -> i64 {
 /// Number of boundary half-edges.
 pub fn boundary_half_edges(mesh: &PolyMesh) -> usize {
     let he = HalfEdgeMesh::from_poly(mesh).expect("valid mesh");
-    he.half_edge_indices()
-        .filter(|&h| he.half_edge(h).unwrap().is_boundary())
-        .count()
+    he.half_edge_indices().filter(|&h| he.half_edge(h).unwrap().is_boundary()).count()
 }
 
 pub fn position(mesh: &PolyMesh, v: usize) -> [f32; 3] {
-    [
-        mesh.positions[3 * v],
-        mesh.positions[3 * v + 1],
-        mesh.positions[3 * v + 2],
-    ]
+    [mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]]
 }
 
 pub fn distance(a: [f32; 3], b: [f32; 3]) -> f32 {
@@ -38,7 +32,28 @@ pub fn sample_meshes() -> Vec<(&'static str, PolyMesh)> {
         ("grid", grid(4, 3)),
         ("grid-with-hole", grid_with_hole(5, 5, 2..3, 1..3)),
         ("prism5", prism(5)),
-        ("prism7-triangulated", triangulate_quads(&prism(7))),
+        ("prism7-mixed", triangulate_quads(&prism(7))),
+        ("icosahedron", icosahedron()),
+        ("dodecahedron", dodecahedron()),
         ("torus-triangles", torus_triangles(6, 5, 2.0, 0.7)),
     ]
+}
+
+/// Asserts that two point sets are equal up to order, each point matching one within `tol`.
+pub fn assert_same_points(a: &[[f32; 3]], b: &[[f32; 3]], tol: f32, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: point counts differ");
+    let mut order: Vec<usize> = (0..b.len()).collect();
+    order.sort_by(|&i, &j| b[i][0].total_cmp(&b[j][0]));
+    let xs: Vec<f32> = order.iter().map(|&i| b[i][0]).collect();
+    let mut used = vec![false; b.len()];
+    for p in a {
+        let start = xs.partition_point(|&x| x < p[0] - tol);
+        let found = (start..xs.len())
+            .take_while(|&k| xs[k] <= p[0] + tol)
+            .find(|&k| !used[k] && distance(*p, b[order[k]]) <= tol);
+        match found {
+            Some(k) => used[k] = true,
+            None => panic!("{what}: no match for point {p:?}"),
+        }
+    }
 }
