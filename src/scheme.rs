@@ -3,7 +3,8 @@
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::refine::dqq::{self, DualBoundary};
-use crate::refine::{pqq, ptq, quad_tri};
+use crate::refine::{pqq, ptq, quad_tri, sqrt3};
+use crate::rules::Sqrt3;
 use crate::rules::{
     Bilinear, CatmullClark, DooSabin, Loop, Midpoint, QuadSplitRules, QuadTriangle, TriSplitRules,
 };
@@ -29,6 +30,9 @@ pub enum Scheme {
     /// Quad/Triangle (Stam & Loop 2003): Catmull-Clark on quads, Loop on triangles, and a
     /// blend where they meet; other polygons split into quads at the first level.
     QuadTriangle,
+    /// √3 (Kobbelt 2000): a centroid per triangle, old edges flipped; triangles only. Boundary
+    /// edges are split on every second level of a run of √3 levels, as CGAL does.
+    Sqrt3,
 }
 
 impl Scheme {
@@ -37,6 +41,7 @@ impl Scheme {
         Scheme::Loop,
         Scheme::DooSabin,
         Scheme::QuadTriangle,
+        Scheme::Sqrt3,
         Scheme::Bilinear,
         Scheme::Midpoint,
     ];
@@ -49,12 +54,13 @@ impl Scheme {
             Scheme::Bilinear => "bilinear",
             Scheme::Midpoint => "midpoint",
             Scheme::QuadTriangle => "quad-triangle",
+            Scheme::Sqrt3 => "sqrt3",
         }
     }
 
     /// True for the schemes defined on triangles only.
     pub fn triangles_only(self) -> bool {
-        matches!(self, Scheme::Loop | Scheme::Midpoint)
+        matches!(self, Scheme::Loop | Scheme::Midpoint | Scheme::Sqrt3)
     }
 
     /// Parses one name or a comma-separated list of names, one per level.
@@ -183,12 +189,15 @@ pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
     let mut counts =
         [mesh.num_vertices(), mesh.num_edges(), mesh.num_half_edges(), mesh.num_cells()]
             .map(|n| n as u64);
-    for scheme in &options.schemes {
+    for (level, scheme) in options.schemes.iter().enumerate() {
         let [v, e, h, f] = counts;
         counts = match scheme {
             Scheme::CatmullClark | Scheme::Bilinear => pqq::child_counts(v, e, h, f),
             Scheme::Loop | Scheme::Midpoint => ptq::child_counts(v, e, h, f),
             Scheme::DooSabin => dqq::child_counts(v, e, h, f),
+            Scheme::Sqrt3 => {
+                sqrt3::child_counts(v, e, h, f, sqrt3_refines_boundary(&options.schemes, level))
+            }
             Scheme::QuadTriangle => {
                 // Upper bound: as if every face were a triangle (four children, no centroid)
                 // and as if none were (a centroid each); exact counts need the face sizes.
@@ -201,6 +210,14 @@ pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
         }
     }
     (counts[0], counts[3])
+}
+
+/// √3 splits boundary edges on every second level of a run of √3 levels, starting with the
+/// second, as CGAL's `Sqrt3_subdivision` does on steps 2, 4, ... of one call. A splitting level
+/// thus always follows a √3 level, which leaves at most one boundary edge per triangle.
+fn sqrt3_refines_boundary(schemes: &[Scheme], level: usize) -> bool {
+    let run = schemes.iter().take(level).rev();
+    run.take_while(|&&s| s == Scheme::Sqrt3).count() % 2 == 1
 }
 
 /// Subdivides `mesh` as `options` says. The input is only read.
@@ -234,7 +251,7 @@ fn check_scheme(
             "boundary 'none' is only defined for doo-sabin; use 'edge-and-corner', 'edge-only', 'fixed' or 'average' with {scheme}"
         )));
     }
-    if scheme == Scheme::DooSabin {
+    if matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
         dqq::check(mesh, scheme.name()).map_err(|e| at(e.to_string()))?;
     }
     Ok(())
@@ -262,9 +279,7 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
             Scheme::Loop => tri_split(&mesh, &Loop { boundary }),
             Scheme::Midpoint => tri_split(&mesh, &Midpoint),
             Scheme::QuadTriangle => {
-                let linear = HalfEdgeMesh::from_poly(&quad_tri::linear_split(&mesh))?;
-                let positions = quad_tri::smooth(&linear, &QuadTriangle { boundary });
-                Level::Poly(PolyMesh { positions, ..linear.to_poly() })
+                Level::Poly(quad_tri::refine(&mesh, &QuadTriangle { boundary }))
             }
             Scheme::DooSabin => {
                 let mode = if boundary == Boundary::None {
@@ -273,6 +288,10 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
                     DualBoundary::Chaikin
                 };
                 Level::Poly(dqq::refine(&mesh, &DooSabin, mode))
+            }
+            Scheme::Sqrt3 => {
+                let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
+                Level::Poly(sqrt3::refine(&mesh, &Sqrt3 { boundary }, refine_boundary))
             }
         };
         mesh = match child {

@@ -364,3 +364,98 @@ fn procedural_solids() {
         assert!(volume > 0.0, "{name}: faces wound inward");
     }
 }
+
+/// Quad/Triangle evaluates its averaging step on the parent mesh. Here the step is done the
+/// long way, as the derivation states it: split linearly (midpoints and centroids), build the
+/// refined mesh, and average every vertex over its refined one-ring. Both must agree, on mixed
+/// meshes with n-gons, triangles, quads and boundaries.
+#[test]
+fn quad_triangle_equals_the_literal_two_step_construction() {
+    for (name, mesh) in [
+        ("prism7-mixed", triangulate_quads(&prism(7))),
+        ("dodecahedron", dodecahedron()),
+        ("mixed-grid", mixed_grid()),
+    ] {
+        let out = run(&mesh, Scheme::QuadTriangle, 1, Boundary::EdgeOnly).unwrap();
+        let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        // Linear positions in the child order [old | centroids of non-triangles | midpoints].
+        let mut linear: Vec<[f32; 3]> = he.positions().to_vec();
+        for c in he.cell_indices() {
+            let corners = he.cell(c).unwrap().vertex_indices();
+            if corners.len() != 3 {
+                let mut sum = [0.0f32; 3];
+                for &v in corners {
+                    (0..3).for_each(|k| sum[k] += he.positions()[v as usize][k]);
+                }
+                linear.push(sum.map(|x| x / corners.len() as f32));
+            }
+        }
+        for e in 0..he.num_edges() as u32 {
+            let [a, b] = he.edge_vertices(e).unwrap();
+            let (pa, pb) = (he.positions()[a as usize], he.positions()[b as usize]);
+            linear.push([0, 1, 2].map(|k| (pa[k] + pb[k]) / 2.0));
+        }
+        let refined =
+            HalfEdgeMesh::from_faces(linear.as_flattened(), &out.indices, &out.face_sizes).unwrap();
+        for v in refined.vertex_indices() {
+            let vertex = refined.vertex(v).unwrap();
+            let p = glam::Vec3::from_array(vertex.position());
+            let at = |w: u32| glam::Vec3::from_array(refined.positions()[w as usize]);
+            let (mut n, mut quads, mut tris) = (0u32, 0u32, 0u32);
+            let (mut nbrs, mut diag, mut boundary) =
+                (glam::Vec3::ZERO, glam::Vec3::ZERO, glam::Vec3::ZERO);
+            for h in vertex.half_edges_from() {
+                n += 1;
+                nbrs += at(h.to_vertex_index());
+                if h.is_boundary() {
+                    boundary += at(h.to_vertex_index());
+                }
+                if h.prev_in_cell().is_boundary() {
+                    n += 1;
+                    nbrs += at(h.prev_in_cell().from_vertex_index());
+                    boundary += at(h.prev_in_cell().from_vertex_index());
+                }
+                if h.cell().num_vertices() == 4 {
+                    quads += 1;
+                    diag += at(h.next_in_cell().to_vertex_index());
+                } else {
+                    tris += 1;
+                }
+            }
+            let nf = n as f32;
+            let expected = if vertex.is_boundary() {
+                p * 0.5 + boundary * 0.25
+            } else if tris == 0 {
+                p * ((nf - 3.0) / nf) + (nbrs * 2.0 + diag) / (nf * nf)
+            } else if quads == 0 {
+                let a = triangle_vertex_weight(n);
+                p * a + nbrs * ((1.0 - a) / nf)
+            } else {
+                (p + nbrs * 0.5 + diag * 0.25) / (1.0 + 0.5 * nf + 0.25 * quads as f32)
+            };
+            let got = glam::Vec3::from_slice(&out.positions[3 * v as usize..]);
+            assert!(
+                (got - expected).length() < 1e-5,
+                "{name} vertex {v}: {got} vs two-step {expected}"
+            );
+        }
+    }
+}
+
+/// A 3×2 grid whose middle column of quads is split into triangles: quads, triangles and
+/// vertices where both meet, with a boundary.
+fn mixed_grid() -> PolyMesh {
+    let g = grid(3, 2);
+    let mut indices = Vec::new();
+    let mut face_sizes = Vec::new();
+    for (f, q) in g.indices.chunks_exact(4).enumerate() {
+        if f % 3 == 1 {
+            indices.extend_from_slice(&[q[0], q[1], q[2], q[0], q[2], q[3]]);
+            face_sizes.extend_from_slice(&[3, 3]);
+        } else {
+            indices.extend_from_slice(q);
+            face_sizes.push(4);
+        }
+    }
+    PolyMesh { positions: g.positions, indices, face_sizes }
+}

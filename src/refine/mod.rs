@@ -4,9 +4,11 @@
 //! - [`pqq`]: primal quad split (Catmull-Clark, bilinear);
 //! - [`ptq`]: primal triangle split (Loop, midpoint);
 //! - [`dqq`]: dual split (Doo-Sabin);
-//! - [`quad_tri`]: triangles as PTQ, other faces as PQQ (Quad/Triangle).
+//! - [`quad_tri`]: triangles as PTQ, other faces as PQQ (Quad/Triangle);
+//! - [`sqrt3`]: centroid split and edge flips (√3).
 
 pub mod dqq;
 pub mod pqq;
 pub mod ptq;
 pub mod quad_tri;
+pub mod sqrt3;

@@ -1,7 +1,6 @@
 //! The mixed split of Quad/Triangle subdivision: triangles split into four as in
-//! [`super::ptq`], every other face into quads around its centroid as in [`super::pqq`], with
-//! linear (midpoint and centroid) positions. A smoothing policy
-//! ([`crate::rules::AveragingRules`]) then moves every vertex of the refined mesh.
+//! [`super::ptq`], every other face into quads around a face point as in [`super::pqq`]. The
+//! positions come from a [`MixedSplitRules`] policy.
 //!
 //! Child vertices are `[old vertices | centroids of non-triangles, in cell order | edge
 //! midpoints]`; child faces follow the parent cells, four triangles per triangle (in the PTQ
@@ -9,7 +8,7 @@
 
 use super::ptq;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::rules::{centroid, edge_midpoint, AveragingRules};
+use crate::rules::MixedSplitRules;
 
 /// Child `[vertices, faces]` of one level, from the parent counts and the number of triangles
 /// `tris` (whose half-edges number `3 tris`).
@@ -17,8 +16,8 @@ pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64, tris
     [vertices + (cells - tris) + edges, 4 * tris + (half_edges - 3 * tris)]
 }
 
-/// The linear split: positions at midpoints and centroids, and the child faces.
-pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
+/// One level: the child mesh as flat arrays, with positions from `rules`.
+pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
     let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
     let size = |c: usize| (mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]) as usize;
     // Index of each cell's centroid among the centroids (u32::MAX for triangles).
@@ -35,19 +34,24 @@ pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
         }
     }
     let edge_base = (nv as u32) + centroids;
+    // Face points of every cell first (the rules read them), then the child positions.
+    let cell_points: Vec<[f32; 3]> =
+        (0..nf as u32).map(|c| rules.face_point(mesh, c).to_array()).collect();
     let mut positions = vec![0.0f32; 3 * (nv + centroids as usize + ne)];
     {
         let points = positions.as_chunks_mut::<3>().0;
         let (old, rest) = points.split_at_mut(nv);
         let (faces, edges) = rest.split_at_mut(centroids as usize);
-        old.copy_from_slice(&mesh.positions);
+        for (v, p) in old.iter_mut().enumerate() {
+            *p = rules.vertex_point(mesh, &cell_points, v as u32).to_array();
+        }
         for (c, &k) in centroid_of.iter().enumerate() {
             if k != u32::MAX {
-                faces[k as usize] = centroid(mesh, c as u32).to_array();
+                faces[k as usize] = cell_points[c];
             }
         }
         for (e, p) in edges.iter_mut().enumerate() {
-            *p = edge_midpoint(mesh, e as u32).to_array();
+            *p = rules.edge_point(mesh, &cell_points, e as u32).to_array();
         }
     }
     let mut indices = Vec::with_capacity(num_indices);
@@ -75,13 +79,4 @@ pub fn linear_split(mesh: &HalfEdgeMesh) -> PolyMesh {
         }
     }
     PolyMesh { positions, indices, face_sizes }
-}
-
-/// Moves every vertex of the linearly refined `mesh` by the smoothing policy.
-pub fn smooth<R: AveragingRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<f32> {
-    let mut positions = vec![0.0f32; 3 * mesh.num_vertices()];
-    for (v, p) in positions.as_chunks_mut::<3>().0.iter_mut().enumerate() {
-        *p = rules.vertex_point(mesh, v as u32).to_array();
-    }
-    positions
 }

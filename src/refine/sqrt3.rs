@@ -23,8 +23,8 @@
 //! - split boundary half-edge: the middle triangle `(p_t, p_s, x)`;
 //! - any other edge (boundary, or non-manifold, which is never flipped): `(u, v, a(h))`.
 //!
-//! So the children of cell `c` are the contiguous faces `3c .. 3c + 2` of a triangle mesh, and
-//! every loop writes only its own entries.
+//! So on a triangle mesh the faces of cell `c`'s half-edges are the contiguous `3c .. 3c + 2`,
+//! and every loop writes only its own entries.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::rules::Sqrt3Rules;
@@ -67,9 +67,7 @@ fn split_half_edges(mesh: &HalfEdgeMesh, refine_boundary: bool) -> Vec<u32> {
             if w[1] - w[0] != 3 {
                 return NONE;
             }
-            (w[0]..w[1])
-                .find(|&h| mesh.he_next_around_edge[h as usize] == h)
-                .unwrap_or(NONE)
+            (w[0]..w[1]).find(|&h| mesh.he_next_around_edge[h as usize] == h).unwrap_or(NONE)
         })
         .collect()
 }
@@ -124,11 +122,7 @@ pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bo
 
     let indices = child_face_indices(mesh, &split, &first);
     let face_sizes = vec![3; mesh.num_half_edges()];
-    PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    }
+    PolyMesh { positions, indices, face_sizes }
 }
 
 /// The point of `h`'s cell across from `h` after the fan split (see the module notes).
@@ -159,11 +153,7 @@ fn child_face_indices(mesh: &HalfEdgeMesh, split: &[u32], first: &[u32]) -> Vec<
             match mesh.edge_half_edges[mesh.edge_range(e)] {
                 [h0, h1] if mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize] => {
                     let g = if h0 == h { h1 } else { h0 };
-                    [
-                        u,
-                        across(mesh, split, first, g),
-                        across(mesh, split, first, h),
-                    ]
+                    [u, across(mesh, split, first, g), across(mesh, split, first, h)]
                 }
                 _ => [u, mesh.to_vertex(h), across(mesh, split, first, h)],
             }

@@ -10,12 +10,14 @@ mod doo_sabin;
 mod linear;
 mod loop_subdivision;
 mod quad_triangle;
+mod sqrt3;
 
 pub use catmull_clark::CatmullClark;
 pub use doo_sabin::{doo_sabin_weight, DooSabin};
 pub use linear::{Bilinear, Midpoint};
 pub use loop_subdivision::{loop_beta, Loop};
 pub use quad_triangle::{triangle_vertex_weight, QuadTriangle};
+pub use sqrt3::{sqrt3_alpha, Sqrt3, Sqrt3Rules};
 
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
@@ -59,11 +61,16 @@ pub trait TriSplitRules {
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3;
 }
 
-/// A smoothing policy that moves every vertex of an already (linearly) refined mesh, for
-/// schemes that factor into a linear split followed by averaging, such as Quad/Triangle.
-pub trait AveragingRules {
-    /// The new position of vertex `vertex` of the refined mesh.
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3;
+/// The geometry policy of the mixed split (Quad/Triangle): triangles split as PTQ, other faces
+/// as PQQ. Every cell gets a face point (used by the rules; output only for non-triangles),
+/// every edge an edge point, every vertex a new position.
+pub trait MixedSplitRules {
+    /// The point for cell `cell`.
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3;
+    /// The point for edge `edge`; `face_points[c]` is the face point of cell `c`.
+    fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3;
+    /// The new position of vertex `vertex`.
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3;
 }
 
 /// The geometry policy of a dual split (DQQ): every face corner (half-edge) gets a new point,

@@ -32,13 +32,24 @@
 //!
 //! So on an all-quad mesh the scheme is Catmull-Clark and on an all-triangle mesh it is Loop,
 //! boundaries included, which the tests check against OpenSubdiv.
+//!
+//! # Evaluation on the parent mesh
+//!
+//! The refined mesh is never built: each rule gathers the refined one-ring from the parent.
+//! A face point is the centroid (the quad rule returns it unchanged: `Σ e_i = Σ corners`). An
+//! old vertex's refined neighbours are the midpoints of its edges and its diagonals the face
+//! points of its non-triangle faces. An edge point's refined neighbours are the edge's ends, plus
+//! per adjacent triangle the midpoints of its two other edges (three child triangles), or per
+//! other face its face point (two child quads, whose diagonals are the midpoints of the face's
+//! edges next to the edge). On the boundary the refined crease rule and seed 003's mean equal
+//! the parent-mesh forms of [`boundary_vertex_rule`], and boundary edge points stay midpoints.
 
-use super::{boundary_vertex_rule, ring, vec3, AveragingRules};
+use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, vec3, MixedSplitRules};
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
 use glam::Vec3;
 
-/// Stam & Loop's Quad/Triangle smoothing rules.
+/// Stam & Loop's Quad/Triangle rules.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadTriangle {
     pub boundary: Boundary,
@@ -50,55 +61,99 @@ pub fn triangle_vertex_weight(n: u32) -> f32 {
     (2.0 * c * c - 0.25) as f32
 }
 
-impl AveragingRules for QuadTriangle {
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
-        let v = vec3(mesh.positions[vertex as usize]);
-        let (mut quads, mut others, mut diagonals) = (0u32, 0u32, Vec3::ZERO);
+/// The refined one-ring of a vertex of the refined mesh: its valence, how many of its faces
+/// are quads and how many are not, the sum of its neighbours and of its quad diagonals.
+#[derive(Default)]
+struct RefinedRing {
+    valence: u32,
+    quads: u32,
+    triangles: u32,
+    neighbours: Vec3,
+    diagonals: Vec3,
+}
+
+impl RefinedRing {
+    /// The averaging step of the derivation above, for an interior vertex at `v`.
+    fn smooth(&self, v: Vec3) -> Vec3 {
+        let n = self.valence as f32;
+        if self.triangles == 0 {
+            v * ((n - 3.0) / n) + (self.neighbours * 2.0 + self.diagonals) / (n * n)
+        } else if self.quads == 0 {
+            let a = triangle_vertex_weight(self.valence);
+            v * a + self.neighbours * ((1.0 - a) / n)
+        } else {
+            let alpha = 1.0 / (1.0 + 0.5 * n + 0.25 * self.quads as f32);
+            (v + self.neighbours * 0.5 + self.diagonals * 0.25) * alpha
+        }
+    }
+}
+
+fn cell_size(mesh: &HalfEdgeMesh, c: usize) -> u32 {
+    mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]
+}
+
+fn position(mesh: &HalfEdgeMesh, v: u32) -> Vec3 {
+    vec3(mesh.positions[v as usize])
+}
+
+impl MixedSplitRules for QuadTriangle {
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
+        super::centroid(mesh, cell)
+    }
+
+    fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3 {
+        let m = edge_midpoint(mesh, edge);
+        let Some(halves) = smooth_edge(mesh, edge) else { return m };
+        let [a, b] = mesh.edge_vertices[edge as usize];
+        let mut r = RefinedRing {
+            valence: 2,
+            neighbours: position(mesh, a) + position(mesh, b),
+            ..RefinedRing::default()
+        };
+        for h in halves {
+            let c = mesh.he_cell[h as usize] as usize;
+            let (prev, next) = (mesh.prev_in_cell(h), mesh.next_in_cell(h));
+            let before = position(mesh, mesh.he_from[prev as usize]);
+            let after = position(mesh, mesh.to_vertex(next));
+            let (from, to) = (
+                position(mesh, mesh.he_from[h as usize]),
+                position(mesh, mesh.he_from[next as usize]),
+            );
+            if cell_size(mesh, c) == 3 {
+                // `before == after` is the opposite corner; its two edges' midpoints.
+                r.valence += 2;
+                r.triangles += 3;
+                r.neighbours += (from + to) * 0.5 + before;
+            } else {
+                r.valence += 1;
+                r.quads += 2;
+                r.neighbours += vec3(face_points[c]);
+                r.diagonals += (before + from + to + after) * 0.5;
+            }
+        }
+        r.smooth(m)
+    }
+
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
+        let v = position(mesh, vertex);
+        let mut r = RefinedRing::default();
         let ring = ring(mesh, vertex, |h| {
             let c = mesh.he_cell[h as usize] as usize;
-            if mesh.cell_offsets[c + 1] - mesh.cell_offsets[c] == 4 {
-                quads += 1;
-                let diagonal = mesh.to_vertex(mesh.next_in_cell(h));
-                diagonals += vec3(mesh.positions[diagonal as usize]);
+            if cell_size(mesh, c) == 3 {
+                r.triangles += 1;
             } else {
-                others += 1;
+                r.quads += 1;
+                r.diagonals += vec3(face_points[c]);
             }
         });
         if ring.faces == 0 {
             return v;
         }
-        if let Some(p) = self.boundary_point(v, &ring) {
+        if let Some(p) = boundary_vertex_rule(self.boundary, v, &ring) {
             return p;
         }
-        let n = ring.valence as f32;
-        if others == 0 {
-            v * ((n - 3.0) / n) + (ring.neighbours * 2.0 + diagonals) / (n * n)
-        } else if quads == 0 {
-            let a = triangle_vertex_weight(ring.valence);
-            v * a + ring.neighbours * ((1.0 - a) / n)
-        } else {
-            let alpha = 1.0 / (1.0 + 0.5 * n + 0.25 * quads as f32);
-            (v + ring.neighbours * 0.5 + diagonals * 0.25) * alpha
-        }
-    }
-}
-
-impl QuadTriangle {
-    /// Boundary vertices of the refined mesh. The primal boundary rules are stated on the
-    /// parent mesh; here they act on the linearly refined one, where the crease rule is
-    /// `1/2 v + 1/4 (b₁ + b₂)`, corners keep their place, and seed 003's mean keeps its form.
-    fn boundary_point(&self, v: Vec3, ring: &super::Ring) -> Option<Vec3> {
-        match self.boundary {
-            Boundary::EdgeOnly | Boundary::EdgeAndCorner if ring.boundary_edges == 2 => {
-                if self.boundary == Boundary::EdgeAndCorner && ring.faces == 1 {
-                    return Some(v);
-                }
-                Some(v * 0.5 + ring.boundary * 0.25)
-            }
-            Boundary::Average if ring.boundary_edges > 0 => {
-                Some((v + ring.boundary) / (1.0 + ring.boundary_edges as f32))
-            }
-            _ => boundary_vertex_rule(self.boundary, v, ring),
-        }
+        r.valence = ring.valence;
+        r.neighbours = (v * ring.valence as f32 + ring.neighbours) * 0.5;
+        r.smooth(v)
     }
 }

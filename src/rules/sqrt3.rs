@@ -87,11 +87,7 @@ impl Sqrt3Rules for Sqrt3 {
             // Two boundary edges: a boundary vertex; more: several fans meet, no direction.
             let moves =
                 refine_boundary && ring.boundary_edges == 2 && self.boundary != Boundary::Fixed;
-            return if moves {
-                (v * 19.0 + ring.boundary * 4.0) / 27.0
-            } else {
-                v
-            };
+            return if moves { (v * 19.0 + ring.boundary * 4.0) / 27.0 } else { v };
         }
         let alpha = sqrt3_alpha(ring.valence);
         v * (1.0 - alpha) + ring.neighbours * (alpha / ring.valence as f32)
@@ -106,9 +102,6 @@ impl Sqrt3Rules for Sqrt3 {
             return [(p(t) * 2.0 + p(s)) / 3.0, (p(t) + p(s) * 2.0) / 3.0];
         }
         let (q, r) = boundary_neighbours(mesh, half_edge);
-        [
-            (p(q) + p(t) * 16.0 + p(s) * 10.0) / 27.0,
-            (p(t) * 10.0 + p(s) * 16.0 + p(r)) / 27.0,
-        ]
+        [(p(q) + p(t) * 16.0 + p(s) * 10.0) / 27.0, (p(t) * 10.0 + p(s) * 16.0 + p(r)) / 27.0]
     }
 }
