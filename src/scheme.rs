@@ -252,7 +252,10 @@ fn check_scheme(
         )));
     }
     if matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
-        dqq::check(mesh, scheme.name()).map_err(|e| at(e.to_string()))?;
+        dqq::check(mesh, scheme.name()).map_err(|e| match e {
+            Error::Unsupported(message) => at(message),
+            other => other,
+        })?;
     }
     Ok(())
 }

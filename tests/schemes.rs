@@ -302,6 +302,7 @@ fn doo_sabin_refuses_non_manifold_meshes() {
     };
     let msg = run(&fan, Scheme::DooSabin, 1, Boundary::EdgeAndCorner).unwrap_err().to_string();
     assert!(msg.contains("vertices 0 and 1") && msg.contains("manifold"), "{msg}");
+    assert_eq!(msg.matches("unsupported input").count(), 1, "{msg}");
 }
 
 /// Doo-Sabin's two boundary modes on an open grid. Retract (CGAL): only faces of faces,

@@ -8,7 +8,8 @@ use subsurf::HalfEdgeMesh;
 
 const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
 
-  --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, bilinear, midpoint;
+  --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, sqrt3,
+                     bilinear, midpoint;
                      or a comma-separated list, one scheme per level
   --levels N         levels of subdivision, 0 or more (default 1, or the list's length)
   --boundary MODE    edge-and-corner (default), edge-only, fixed, average, none (doo-sabin)
