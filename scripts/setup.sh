@@ -13,6 +13,13 @@ if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
   rustup target add wasm32-unknown-unknown
 fi
 
+for component in rustfmt clippy; do
+  if ! rustup component list --installed | grep -q "^$component"; then
+    step "rustup component add $component"
+    rustup component add "$component"
+  fi
+done
+
 if ! command -v wasm-bindgen >/dev/null 2>&1 \
    || [ "$(wasm-bindgen --version | awk '{print $2}')" != "$WASM_BINDGEN_VERSION" ]; then
   step "cargo install wasm-bindgen-cli $WASM_BINDGEN_VERSION (about 5 minutes, once)"
@@ -20,18 +27,30 @@ if ! command -v wasm-bindgen >/dev/null 2>&1 \
   cargo install wasm-bindgen-cli --version "$WASM_BINDGEN_VERSION"
 fi
 
-if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
-  step "apt-get install chromium chromium-driver"
+# Debian packages for the commands we need: chromium + chromedriver (wasm browser tests, demo
+# end-to-end test), node + npm (package smoke test, Playwright; Debian 12's nodejs is 18, enough),
+# python3 (scripts/demo.sh serves www/ with http.server).
+APT_PACKAGES=()
+command -v chromium >/dev/null 2>&1 || APT_PACKAGES+=(chromium)
+command -v chromedriver >/dev/null 2>&1 || APT_PACKAGES+=(chromium-driver)
+command -v node >/dev/null 2>&1 || APT_PACKAGES+=(nodejs)
+command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(npm)
+command -v python3 >/dev/null 2>&1 || APT_PACKAGES+=(python3)
+if [ "${#APT_PACKAGES[@]}" -gt 0 ]; then
+  step "apt-get install ${APT_PACKAGES[*]}"
   SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   # This image deletes downloaded .debs between dpkg calls, so the install fails now and then;
   # a retry picks up where the last one stopped.
   $SUDO apt-get update -qq || true
   for try in 1 2 3 4 5 6; do
-    if DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium chromium-driver; then break; fi
-    [ "$try" -lt 6 ] || { echo "setup: chromium install failed 6 times" >&2; exit 1; }
+    if DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${APT_PACKAGES[@]}"; then break; fi
+    [ "$try" -lt 6 ] || { echo "setup: apt-get install ${APT_PACKAGES[*]} failed 6 times" >&2; exit 1; }
     sleep 2
   done
 fi
+
+NODE_MAJOR=$(node -p 'process.versions.node.split(".")[0]')
+[ "$NODE_MAJOR" -ge 18 ] || { echo "setup: Node $NODE_MAJOR is too old; subsurf needs Node 18 or newer" >&2; exit 1; }
 
 if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   step "npm ci"

@@ -1,10 +1,10 @@
 //! The JavaScript API: typed arrays in, typed arrays out, a thrown `Error` with a message.
 //!
-//! This layer only converts and checks. Every input is read through calls that cannot throw into
-//! Rust (`Reflect` with `catch`) and copied into Rust-owned vectors, so the caller's arrays are
-//! never written and no view of wasm memory ever escapes (it would go stale when memory grows).
-//! Every failure is a `Result`: a panic would abort the module instance and break every later
-//! call on the page.
+//! This layer only converts and checks. Mesh fields are read with `Reflect` calls (a throwing
+//! getter becomes an error) and copied into Rust-owned vectors, so the caller's arrays are never
+//! written; outputs are fresh typed arrays, never views of wasm memory (those go stale when memory
+//! grows). Every failure is a `Result`: a panic would abort the module instance and break every
+//! later call on the page.
 //!
 //! ```js
 //! import init, { subdivide } from 'subsurf';
@@ -22,12 +22,23 @@ use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
+// The macro consumes the item it marks, so the text lives in its own constant that the unit test
+// below can also read.
 #[wasm_bindgen(typescript_custom_section)]
-const TYPESCRIPT_TYPES: &'static str = r#"
-/** Names accepted by `SubdivideOptions.scheme`. */
-export type SchemeName = 'catmull-clark';
+const TYPESCRIPT_SECTION: &'static str = TYPESCRIPT_TYPES;
 
-/** Names accepted by `SubdivideOptions.boundary`. */
+/// The interfaces of the JS API, added to `subsurf.d.ts`.
+// The macro's expansion reads this in a way the dead-code lint does not see.
+#[allow(dead_code)]
+const TYPESCRIPT_TYPES: &str = r#"
+/**
+ * Names accepted by `SubdivideOptions.scheme`. 'loop', 'sqrt3' and 'midpoint' take triangles
+ * only; the others take any polygons. `schemeNames()` lists them at run time.
+ */
+export type SchemeName =
+  'catmull-clark' | 'loop' | 'doo-sabin' | 'quad-triangle' | 'sqrt3' | 'bilinear' | 'midpoint';
+
+/** Names accepted by `SubdivideOptions.boundary`; `boundaryRules()` lists them at run time. */
 export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average';
 
 /** A polygon mesh as flat typed arrays. The arrays are only read, never modified. */
@@ -77,8 +88,9 @@ const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
 /// Mesh fields accepted and ignored: the extra output of `subdivide`.
 const IGNORED_MESH_KEYS: [&str; 1] = ["triangles"];
 
-/// The most levels one call accepts. Far beyond any `maxFaces` for a real mesh (every level
-/// multiplies the face count by about 4), it only bounds the work on faceless inputs.
+/// The most levels one call accepts. Far beyond any `maxFaces` for a real mesh (a level of a
+/// splitting scheme multiplies the face count by 3 or 4), it only bounds the work and the
+/// per-level list on degenerate inputs.
 pub const MAX_LEVELS: u32 = 32;
 
 /// `Number.MAX_SAFE_INTEGER`: the largest whole number a JS number holds exactly.
@@ -133,6 +145,18 @@ pub fn write_obj(
     // here keeps a bad index from turning into an OBJ file no reader accepts.
     HalfEdgeMesh::from_poly(&mesh).map_err(js_error)?;
     Ok(io::write_obj(&mesh))
+}
+
+/// The names `options.scheme` accepts, in the library's order.
+#[wasm_bindgen(js_name = schemeNames, unchecked_return_type = "SchemeName[]")]
+pub fn scheme_names() -> Array {
+    Scheme::ALL.iter().map(|s| JsValue::from_str(s.name())).collect()
+}
+
+/// The names `options.boundary` accepts, the default first.
+#[wasm_bindgen(js_name = boundaryRules, unchecked_return_type = "BoundaryRule[]")]
+pub fn boundary_rules() -> Array {
+    Boundary::ALL.iter().map(|b| JsValue::from_str(b.name())).collect()
 }
 
 /// The version of the subsurf package.
@@ -310,23 +334,17 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
             describe(value)
         )));
     }
-    check_keys(
-        value,
-        &MESH_KEYS,
-        &IGNORED_MESH_KEYS,
-        "mesh field",
-        "mesh fields",
-    )
-    .map_err(mesh_error)?;
+    check_keys(value, &MESH_KEYS, &IGNORED_MESH_KEYS, "mesh field", "mesh fields")
+        .map_err(mesh_error)?;
 
     let positions = get(value, "positions")?;
     let positions = match positions.dyn_ref::<Float32Array>() {
-        Some(array) => array.to_vec(),
+        Some(array) => copy_f32(array, "positions")?,
         None => return Err(wrong_array_type("positions", "Float32Array", &positions)),
     };
     let indices = get(value, "indices")?;
     let indices = match indices.dyn_ref::<Uint32Array>() {
-        Some(array) => array.to_vec(),
+        Some(array) => copy_u32(array, "indices")?,
         None => return Err(wrong_array_type("indices", "Uint32Array", &indices)),
     };
     let face_sizes = get(value, "faceSizes")?;
@@ -341,15 +359,37 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
         vec![3; indices.len() / 3]
     } else {
         match face_sizes.dyn_ref::<Uint32Array>() {
-            Some(array) => array.to_vec(),
+            Some(array) => copy_u32(array, "faceSizes")?,
             None => return Err(wrong_array_type("faceSizes", "Uint32Array", &face_sizes)),
         }
     };
-    Ok(PolyMesh {
-        positions,
-        indices,
-        face_sizes,
-    })
+    Ok(PolyMesh { positions, indices, face_sizes })
+}
+
+// The copies reserve first, so that an array too large for wasm memory is an error rather than
+// an out-of-memory abort, and copy from a fixed-length view, so that the length cannot change
+// between sizing and copying (length-tracking views of resizable buffers).
+fn copy_f32(array: &Float32Array, field: &str) -> Result<Vec<f32>, Error> {
+    let mut out = zeroed(array.length(), field)?;
+    array.subarray(0, out.len() as u32).copy_to(&mut out);
+    Ok(out)
+}
+
+fn copy_u32(array: &Uint32Array, field: &str) -> Result<Vec<u32>, Error> {
+    let mut out = zeroed(array.length(), field)?;
+    array.subarray(0, out.len() as u32).copy_to(&mut out);
+    Ok(out)
+}
+
+fn zeroed<T: Default + Clone>(len: u32, field: &str) -> Result<Vec<T>, Error> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(len as usize).map_err(|_| {
+        Error::TooLarge(format!(
+            "mesh.{field} has {len} entries, more than the WebAssembly memory can hold"
+        ))
+    })?;
+    out.resize(len as usize, T::default());
+    Ok(out)
 }
 
 fn get(object: &JsValue, key: &str) -> Result<JsValue, Error> {
@@ -366,10 +406,7 @@ fn wrong_array_type(field: &str, expected: &str, got: &JsValue) -> Error {
     } else {
         String::new()
     };
-    mesh_error(format!(
-        "mesh.{field} must be a {expected}, got {}{hint}",
-        describe(got)
-    ))
+    mesh_error(format!("mesh.{field} must be a {expected}, got {}{hint}", describe(got)))
 }
 
 fn is_typed_array(value: &JsValue) -> bool {
@@ -412,9 +449,8 @@ fn check_keys(
         if allowed.contains(&key.as_str()) || ignored.contains(&key.as_str()) {
             continue;
         }
-        let suggestion = closest(&key, allowed)
-            .map(|k| format!(" (did you mean '{k}'?)"))
-            .unwrap_or_default();
+        let suggestion =
+            closest(&key, allowed).map(|k| format!(" (did you mean '{k}'?)")).unwrap_or_default();
         return Err(format!(
             "unknown {what} '{key}'{suggestion}; allowed {what_plural} are {}",
             quoted_list(allowed.iter().copied())
@@ -450,10 +486,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 }
 
 fn quoted_list<'a>(names: impl Iterator<Item = &'a str>) -> String {
-    names
-        .map(|n| format!("'{n}'"))
-        .collect::<Vec<_>>()
-        .join(", ")
+    names.map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ")
 }
 
 /// A short description of a JS value for error messages: `undefined`, `-1`, `string '2'`,
@@ -506,4 +539,48 @@ fn constructor_name(value: &JsValue) -> Option<String> {
         .ok()?
         .as_string()
         .filter(|name| !name.is_empty())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wasm_bindgen_test::wasm_bindgen_test;
+
+    fn union(names: impl Iterator<Item = &'static str>) -> String {
+        names.map(|n| format!("'{n}'")).collect::<Vec<_>>().join(" | ")
+    }
+
+    /// The TypeScript section is hand-written; it must name exactly the library's schemes and
+    /// boundary rules, in the library's order.
+    #[wasm_bindgen_test]
+    fn typescript_names_match_the_library() {
+        // Compared with whitespace collapsed, so the section may wrap its lines freely.
+        let types = TYPESCRIPT_TYPES.split_whitespace().collect::<Vec<_>>().join(" ");
+        let schemes =
+            format!("export type SchemeName = {};", union(Scheme::ALL.iter().map(|s| s.name())));
+        let boundaries = format!(
+            "export type BoundaryRule = {};",
+            union(Boundary::ALL.iter().map(|b| b.name()))
+        );
+        let defaults = [
+            format!("from 0 to {MAX_LEVELS}."),
+            format!("Default {}.", crate::scheme::DEFAULT_MAX_FACES),
+            format!("Default '{}'.", Scheme::default().name()),
+            format!("Default '{}'.", Boundary::default().name()),
+        ];
+        let keys = OPTION_KEYS.map(|key| format!(" {key}?: "));
+        for text in [schemes, boundaries].iter().chain(&defaults).chain(&keys) {
+            assert!(types.contains(text.as_str()), "TypeScript section should contain {text:?}");
+        }
+    }
+
+    #[wasm_bindgen_test]
+    fn typo_suggestions() {
+        assert_eq!(closest("level", &OPTION_KEYS), Some("levels"));
+        assert_eq!(closest("MaxFaces", &OPTION_KEYS), Some("maxFaces"));
+        assert_eq!(closest("face_sizes", &MESH_KEYS), Some("faceSizes"));
+        assert_eq!(closest("normals", &MESH_KEYS), None);
+        assert_eq!(closest("faceSize", &MESH_KEYS), Some("faceSizes"));
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+    }
 }

@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Runs every test of subsurf, in order, and prints a summary. Exits non-zero if any step fails.
+#
+#   scripts/test.sh
+#
+# Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
+# wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
+# the built package, and the demo page end-to-end test (when tests/e2e/demo.mjs exists).
+# A step whose input failed to build is skipped and counted as a failure.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+LOGS=artifacts/test-logs
+mkdir -p "$LOGS"
+NAMES=()
+RESULTS=()
+TIMES=()
+FAILED=0
+
+# run NAME COMMAND...: runs a step, tees its output to $LOGS/NAME.log, records status and time.
+run() {
+  local name=$1
+  shift
+  printf '\n==== %s: %s\n' "$name" "$*"
+  local start=$SECONDS
+  "$@" 2>&1 | tee "$LOGS/$name.log"
+  local status=${PIPESTATUS[0]}
+  record "$name" "$([ "$status" -eq 0 ] && echo ok || echo "FAILED (exit $status)")" $((SECONDS - start))
+  return "$status"
+}
+
+record() {
+  NAMES+=("$1")
+  RESULTS+=("$2")
+  TIMES+=("$3")
+  [ "$2" = ok ] || FAILED=1
+}
+
+skip() {
+  printf '\n==== %s: skipped (%s)\n' "$1" "$2"
+  record "$1" "SKIPPED ($2)" 0
+}
+
+summary() {
+  printf '\n==== summary\n'
+  for i in "${!NAMES[@]}"; do
+    printf '  %-16s %5ss  %s\n' "${NAMES[$i]}" "${TIMES[$i]}" "${RESULTS[$i]}"
+  done
+  if [ "$FAILED" -eq 0 ]; then
+    printf 'all tests passed (%ss)\n' "$SECONDS"
+  else
+    printf 'SOME STEPS FAILED; logs in %s/\n' "$LOGS"
+  fi
+}
+trap summary EXIT
+
+# The wasm test runner picks the first WebDriver it finds; name Chromium's explicitly.
+if [ -z "${CHROMEDRIVER:-}" ] && command -v chromedriver >/dev/null 2>&1; then
+  export CHROMEDRIVER=$(command -v chromedriver)
+fi
+
+# Checks the closing `test result:` lines of the wasm tests: Node and Chromium must each have
+# run every shared case (a silently skipped browser run would otherwise look like a pass).
+check_wasm_counts() {
+  local log=$LOGS/wasm-tests.log
+  local expected
+  expected=$(grep -c '^#\[wasm_bindgen_test\]' tests/common/wasm_cases.rs)
+  local ok=0
+  for target in wasm_node wasm_browser; do
+    local line
+    line=$(awk -v t="tests/$target.rs" 'index($0, "Running " t) { on = 1 } on && /^test result:/ { print; exit }' "$log")
+    printf '  %-13s %s\n' "$target:" "${line:-no test result line}"
+    if ! [[ "$line" =~ ^test\ result:\ ok\.\ ([0-9]+)\ passed\;\ 0\ failed ]] || [ "${BASH_REMATCH[1]}" -ne "$expected" ]; then
+      echo "  expected 'test result: ok. $expected passed; 0 failed' for $target" >&2
+      ok=1
+    fi
+  done
+  if ! grep -q 'Running headless tests in Chrome' "$log"; then
+    echo "  the browser tests did not run in Chrome" >&2
+    ok=1
+  fi
+  return $ok
+}
+
+run setup scripts/setup.sh || { echo "setup failed; nothing else can run" >&2; exit 1; }
+run fmt cargo fmt --check
+run clippy cargo clippy --all-targets -- -D warnings
+run native-tests cargo test --release
+if run wasm-tests cargo test --target wasm32-unknown-unknown; then
+  run wasm-counts check_wasm_counts
+else
+  skip wasm-counts "wasm tests failed"
+fi
+if run build-pkg scripts/build-pkg.sh; then
+  run pkg-smoke node tests/js/pkg_smoke.mjs
+  if [ -f tests/e2e/demo.mjs ]; then
+    run e2e-demo node tests/e2e/demo.mjs
+  else
+    skip e2e-demo "tests/e2e/demo.mjs does not exist"
+  fi
+else
+  skip pkg-smoke "package build failed"
+  skip e2e-demo "package build failed"
+fi
+
+exit "$FAILED"

@@ -1,0 +1,143 @@
+// Smoke test of the built npm package in pkg/ (run scripts/build-pkg.sh first):
+//   node tests/js/pkg_smoke.mjs
+// Installs pkg/'s `files` into a temporary node_modules/subsurf, imports it the three ways a
+// user would (`subsurf/node`, `initSync`, `await init`), subdivides a cube and checks counts,
+// positions, errors and the TypeScript declarations. Exits non-zero on the first failure.
+import assert from 'node:assert/strict';
+import { cpSync, mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
+const pkgDir = join(root, 'pkg');
+let checks = 0;
+
+function check(name, fn) {
+  try {
+    fn();
+    checks++;
+  } catch (error) {
+    console.error(`pkg_smoke: FAILED ${name}\n${error.stack ?? error}`);
+    process.exit(1);
+  }
+}
+
+// ---- package.json and files
+const pkg = JSON.parse(readFileSync(join(pkgDir, 'package.json'), 'utf8'));
+const cargoVersion = readFileSync(join(root, 'Cargo.toml'), 'utf8').match(/^version\s*=\s*"([^"]+)"/m)[1];
+check('package.json', () => {
+  assert.equal(pkg.name, 'subsurf');
+  assert.equal(pkg.version, cargoVersion);
+  assert.equal(pkg.type, 'module');
+  assert.equal(pkg.types, './subsurf.d.ts');
+  assert.ok(pkg.exports['.'] && pkg.exports['./node'], 'exports . and ./node');
+});
+
+const scratch = mkdtempSync(join(tmpdir(), 'subsurf-smoke-'));
+process.on('exit', () => rmSync(scratch, { recursive: true, force: true }));
+const installed = join(scratch, 'node_modules', 'subsurf');
+mkdirSync(installed, { recursive: true });
+for (const file of [...pkg.files, 'package.json']) {
+  cpSync(join(pkgDir, file), join(installed, file)); // throws when `files` names a missing file
+}
+writeFileSync(
+  join(scratch, 'consumer.mjs'),
+  "export * as node from 'subsurf/node';\nexport * as web from 'subsurf';\n",
+);
+
+// ---- the three ways to load it
+const { node } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+const bytes = readFileSync(join(installed, 'subsurf_bg.wasm'));
+// A query string gives a separate module instance, so each loader starts from scratch.
+const viaInitSync = await import(pathToFileURL(join(installed, 'subsurf.js')).href + '?initSync');
+viaInitSync.initSync({ module: bytes });
+const viaInit = await import(pathToFileURL(join(installed, 'subsurf.js')).href + '?init');
+await viaInit.default({ module_or_path: bytes });
+
+const cube = () => ({
+  positions: new Float32Array([-1, -1, -1, 1, -1, -1, -1, 1, -1, 1, 1, -1, -1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1]),
+  indices: new Uint32Array([0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5]),
+  faceSizes: new Uint32Array([4, 4, 4, 4, 4, 4]),
+});
+const near = (a, b) => Math.abs(a - b) < 1e-6;
+
+for (const [name, api] of [['subsurf/node', node], ['initSync', viaInitSync], ['await init', viaInit]]) {
+  check(`${name}: version`, () => assert.equal(api.version(), cargoVersion));
+
+  check(`${name}: cube counts`, () => {
+    for (const [levels, vertices, faces] of [[1, 26, 24], [2, 98, 96], [3, 386, 384]]) {
+      const out = api.subdivide(cube(), { levels });
+      assert.ok(out.positions instanceof Float32Array && out.triangles instanceof Uint32Array);
+      assert.equal(out.positions.length, 3 * vertices, `level ${levels} vertices`);
+      assert.equal(out.faceSizes.length, faces, `level ${levels} faces`);
+      assert.equal(out.indices.length, 4 * faces);
+      assert.equal(out.triangles.length, 6 * faces);
+    }
+  });
+
+  check(`${name}: cube positions (seed 003)`, () => {
+    const input = cube();
+    const p = api.subdivide(input, { levels: 1 }).positions;
+    for (let v = 0; v < 8; v++) {
+      for (let k = 0; k < 3; k++) assert.ok(near(p[3 * v + k], (input.positions[3 * v + k] * 5) / 9), `vertex ${v}`);
+    }
+    const points = [];
+    for (let v = 8; v < 26; v++) points.push([p[3 * v], p[3 * v + 1], p[3 * v + 2]]);
+    const has = (q) => points.some((r) => r.every((x, k) => near(x, q[k])));
+    assert.ok(has([0, -1, 0]), 'face point (0, -1, 0)');
+    assert.ok(has([0, -0.75, -0.75]), 'edge point (0, -0.75, -0.75)');
+    assert.deepEqual(input, cube(), 'input arrays unchanged');
+  });
+
+  check(`${name}: triangles when faceSizes is omitted`, () => {
+    const tetra = { positions: new Float32Array([1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1]), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2]) };
+    const out = api.subdivide(tetra);
+    assert.equal(out.positions.length, 3 * 14);
+    assert.equal(out.faceSizes.length, 12);
+  });
+
+  check(`${name}: errors, then still working`, () => {
+    assert.throws(() => api.subdivide(cube(), { level: 2 }), (e) => e instanceof Error && /unknown option 'level'.*'levels'.*'maxFaces'/.test(e.message));
+    assert.throws(() => api.subdivide({ ...cube(), indices: new Float32Array(24) }), /mesh\.indices must be a Uint32Array, got Float32Array/);
+    assert.throws(() => api.subdivide(cube(), { levels: -1 }), /levels must be a whole number.*got -1/);
+    assert.throws(() => api.subdivide(cube(), { boundary: 'sharp' }), /'sharp'.*'edge-and-corner'/);
+    assert.throws(() => api.readObj('v 0 0 0\nf 1 2 3\n'), /OBJ line 2/);
+    assert.equal(api.subdivide(cube(), { levels: 2 }).faceSizes.length, 96);
+  });
+
+  check(`${name}: OBJ round trip`, () => {
+    const refined = api.subdivide(cube(), { levels: 1 });
+    const again = api.readObj(api.writeObj(refined));
+    assert.deepEqual(again.indices, refined.indices);
+    assert.deepEqual(again.faceSizes, refined.faceSizes);
+  });
+}
+
+// ---- TypeScript declarations are precise, not `any`
+// Whitespace collapsed: wasm-bindgen re-indents the custom section and lines may wrap.
+const dts = readFileSync(join(installed, 'subsurf.d.ts'), 'utf8').replace(/\s+/g, ' ');
+check('subsurf.d.ts', () => {
+  for (const line of [
+    'export function subdivide(mesh: SubdivideMesh, options?: SubdivideOptions): SubdivideResult;',
+    'export function readObj(text: string): PolygonMesh;',
+    'export function writeObj(mesh: SubdivideMesh): string;',
+    'export function version(): string;',
+    'export interface SubdivideMesh {',
+    'export interface SubdivideOptions {',
+    'export interface SubdivideResult extends PolygonMesh {',
+  ]) {
+    assert.ok(dts.includes(line), `subsurf.d.ts should contain: ${line}`);
+  }
+  // The hand-written unions must list what the library accepts.
+  const union = (names) => names.map((n) => `'${n}'`).join(' | ');
+  const schemes = `export type SchemeName = ${union(node.schemeNames())};`;
+  const boundaries = `export type BoundaryRule = ${union(node.boundaryRules())};`;
+  assert.ok(dts.includes(schemes), `subsurf.d.ts should contain: ${schemes}`);
+  assert.ok(dts.includes(boundaries), `subsurf.d.ts should contain: ${boundaries}`);
+  assert.ok(dts.includes('export function schemeNames(): SchemeName[];'));
+  assert.ok(node.schemeNames().includes('catmull-clark') && node.boundaryRules()[0] === 'edge-and-corner');
+  assert.ok(readFileSync(join(installed, 'node.d.ts'), 'utf8').includes("export * from './subsurf.js';"));
+});
+
+console.log(`pkg_smoke: ok (${checks} checks; subsurf ${pkg.version}, subsurf_bg.wasm ${bytes.length} bytes)`);
