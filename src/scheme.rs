@@ -90,8 +90,13 @@ pub enum Boundary {
 }
 
 impl Boundary {
-    pub const ALL: &'static [Boundary] =
-        &[Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average];
+    pub const ALL: &'static [Boundary] = &[
+        Boundary::EdgeAndCorner,
+        Boundary::EdgeOnly,
+        Boundary::Fixed,
+        Boundary::Average,
+        Boundary::None,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {

@@ -39,7 +39,7 @@ export type SchemeName =
   'catmull-clark' | 'loop' | 'doo-sabin' | 'quad-triangle' | 'sqrt3' | 'bilinear' | 'midpoint';
 
 /** Names accepted by `SubdivideOptions.boundary`; `boundaryRules()` lists them at run time. */
-export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average';
+export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average' | 'none';
 
 /** A polygon mesh as flat typed arrays. The arrays are only read, never modified. */
 export interface SubdivideMesh {

@@ -50,7 +50,7 @@ fn bad_input_exits_non_zero_with_a_message() {
     let cases: [(&[&str], &str); 6] = [
         (&[path], "OBJ line 4: face refers to vertex 5"),
         (&["--scheme", "loopy", path], "unknown scheme 'loopy'; use one of 'catmull-clark'"),
-        (&["--boundary", "none", path], "unknown boundary 'none'"),
+        (&["--boundary", "nope", path], "unknown boundary 'nope'"),
         (&["--levels", "-1", path], "--levels '-1' is not a whole number"),
         (&["--frobnicate", path], "unknown option '--frobnicate'"),
         (&["/nonexistent/x.obj"], "cannot read '/nonexistent/x.obj'"),
