@@ -1,0 +1,455 @@
+//! Property tests on random valid meshes, for every scheme: the counts formulas hold (computed
+//! here from our own edge count, not the library's), every result is a valid mesh without NaN,
+//! the Euler characteristic is kept, and a second run gives identical bytes.
+//!
+//! `native_vs_wasm_fixture` also writes a set of seeded random meshes with their native results
+//! to `artifacts/native-vs-wasm.json`; `tests/js/native_vs_wasm.mjs` runs the built npm package on
+//! the same inputs and compares (scripts/test.sh runs both, in that order).
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::{Config, TestRunner};
+use std::collections::HashMap;
+use subsurf::{subdivide, Boundary, Options, PolyMesh, Scheme};
+
+// ---------------------------------------------------------------------------------------------
+// Random valid meshes
+
+/// The shape of a random mesh before its positions are jittered.
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    /// An open `a × b` grid.
+    Grid,
+    /// A closed `a × b` torus (`a`, `b` ≥ 3).
+    Torus,
+    /// A closed prism over an `a`-gon (`a` ≥ 3): two `a`-gons and `a` quads.
+    Prism,
+    /// An open fan of `a` triangles around a centre, or a closed cone over `a`-gon when `b` is
+    /// even (a pyramid).
+    Fan,
+}
+
+#[derive(Clone, Debug)]
+struct Spec {
+    kind: Kind,
+    a: usize,
+    b: usize,
+    /// Bit `k` splits cell `k` into two triangles (grids and tori).
+    split: u64,
+    /// Reverse every face: the mesh stays consistently oriented.
+    flip: bool,
+    /// Per-vertex offsets in [-0.2, 0.2], cycled.
+    noise: Vec<f32>,
+    scale: f32,
+    offset: [f32; 3],
+}
+
+fn spec() -> impl Strategy<Value = Spec> {
+    (
+        prop_oneof![Just(Kind::Grid), Just(Kind::Torus), Just(Kind::Prism), Just(Kind::Fan)],
+        1usize..=5,
+        1usize..=5,
+        any::<u64>(),
+        any::<bool>(),
+        prop::collection::vec(-0.2f32..0.2, 3..48),
+        prop_oneof![Just(1.0f32), 0.01f32..100.0],
+        [-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0],
+    )
+        .prop_map(|(kind, a, b, split, flip, noise, scale, offset)| Spec {
+            kind,
+            a,
+            b,
+            split,
+            flip,
+            noise,
+            scale,
+            offset,
+        })
+}
+
+fn build(spec: &Spec) -> PolyMesh {
+    let mut points: Vec<[f32; 3]> = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    let tau = std::f32::consts::TAU;
+    let quad = |faces: &mut Vec<Vec<u32>>, k: usize, q: [u32; 4]| {
+        if spec.split >> (k % 64) & 1 == 1 {
+            faces.push(vec![q[0], q[1], q[2]]);
+            faces.push(vec![q[0], q[2], q[3]]);
+        } else {
+            faces.push(q.to_vec());
+        }
+    };
+    match spec.kind {
+        Kind::Grid => {
+            let (nx, ny) = (spec.a, spec.b);
+            for j in 0..=ny {
+                for i in 0..=nx {
+                    points.push([i as f32, j as f32, 0.0]);
+                }
+            }
+            let at = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+            for j in 0..ny {
+                for i in 0..nx {
+                    quad(
+                        &mut faces,
+                        j * nx + i,
+                        [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                    );
+                }
+            }
+        }
+        Kind::Torus => {
+            let (nu, nv) = (spec.a + 2, spec.b + 2);
+            for i in 0..nu {
+                for j in 0..nv {
+                    let (u, v) = (tau * i as f32 / nu as f32, tau * j as f32 / nv as f32);
+                    let r = 2.0 + 0.7 * v.cos();
+                    points.push([r * u.cos(), r * u.sin(), 0.7 * v.sin()]);
+                }
+            }
+            let at = |i: usize, j: usize| ((i % nu) * nv + j % nv) as u32;
+            for i in 0..nu {
+                for j in 0..nv {
+                    quad(
+                        &mut faces,
+                        i * nv + j,
+                        [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                    );
+                }
+            }
+        }
+        Kind::Prism => {
+            let n = spec.a + 2;
+            for z in [0.0, 1.5] {
+                for k in 0..n {
+                    let t = tau * k as f32 / n as f32;
+                    points.push([t.cos(), t.sin(), z]);
+                }
+            }
+            let n32 = n as u32;
+            faces.push((0..n32).rev().collect());
+            faces.push((n32..2 * n32).collect());
+            for k in 0..n32 {
+                let next = (k + 1) % n32;
+                quad(&mut faces, k as usize, [k, next, next + n32, k + n32]);
+            }
+        }
+        Kind::Fan => {
+            let n = spec.a + 2;
+            let closed = spec.b.is_multiple_of(2);
+            points.push([0.0, 0.0, 1.0]);
+            for k in 0..n {
+                let t = tau * k as f32 / n as f32;
+                points.push([t.cos(), t.sin(), 0.0]);
+            }
+            let n32 = n as u32;
+            let spokes = if closed { n32 } else { n32 - 1 };
+            for k in 0..spokes {
+                faces.push(vec![0, 1 + k, 1 + (k + 1) % n32]);
+            }
+            if closed {
+                faces.push((1..=n32).rev().collect());
+            }
+        }
+    }
+    let mut positions = Vec::with_capacity(3 * points.len());
+    for (v, p) in points.iter().enumerate() {
+        for k in 0..3 {
+            let jitter = spec.noise[(3 * v + k) % spec.noise.len()];
+            positions.push((p[k] + jitter) * spec.scale + spec.offset[k]);
+        }
+    }
+    let mut indices = Vec::new();
+    let mut face_sizes = Vec::new();
+    for mut face in faces {
+        if spec.flip {
+            face.reverse();
+        }
+        face_sizes.push(face.len() as u32);
+        indices.extend(face);
+    }
+    PolyMesh { positions, indices, face_sizes }
+}
+
+/// Every face fanned into triangles, for the schemes defined on triangles only.
+fn triangulated(mesh: &PolyMesh) -> PolyMesh {
+    let mut indices = Vec::new();
+    let mut start = 0;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        for k in 1..face.len() - 1 {
+            indices.extend([face[0], face[k], face[k + 1]]);
+        }
+        start += n as usize;
+    }
+    let face_sizes = vec![3; indices.len() / 3];
+    PolyMesh { positions: mesh.positions.clone(), indices, face_sizes }
+}
+
+fn input_for(scheme: Scheme, spec: &Spec) -> PolyMesh {
+    let mesh = build(spec);
+    if scheme.triangles_only() {
+        triangulated(&mesh)
+    } else {
+        mesh
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Counting, independently of the library
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Counts {
+    vertices: u64,
+    edges: u64,
+    faces: u64,
+    corners: u64,
+    triangles: u64,
+    boundary_edges: u64,
+    /// Vertices used by at least one face.
+    used_vertices: u64,
+}
+
+fn counts(mesh: &PolyMesh) -> Counts {
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut used = vec![false; mesh.num_vertices()];
+    let mut start = 0;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        for k in 0..face.len() {
+            let (a, b) = (face[k], face[(k + 1) % face.len()]);
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+            used[a as usize] = true;
+        }
+        start += n as usize;
+    }
+    Counts {
+        vertices: mesh.num_vertices() as u64,
+        edges: edges.len() as u64,
+        faces: mesh.num_faces() as u64,
+        corners: mesh.indices.len() as u64,
+        triangles: mesh.face_sizes.iter().filter(|&&n| n == 3).count() as u64,
+        boundary_edges: edges.values().filter(|&&n| n == 1).count() as u64,
+        used_vertices: used.iter().filter(|&&u| u).count() as u64,
+    }
+}
+
+fn euler(c: &Counts) -> i64 {
+    c.vertices as i64 - c.edges as i64 + c.faces as i64
+}
+
+/// `(vertices, faces)` after one level of `scheme` on a mesh with counts `c`, from each scheme's
+/// definition. `splits_boundary` is for √3's second level of a run, which trisects each boundary
+/// edge (two new vertices) and splits its triangle into three towards the far corner instead of
+/// adding a centroid: one vertex more per boundary edge, still three triangles per triangle.
+fn one_level(scheme: Scheme, c: &Counts, splits_boundary: bool) -> (u64, u64) {
+    match scheme {
+        Scheme::CatmullClark | Scheme::Bilinear => (c.vertices + c.edges + c.faces, c.corners),
+        Scheme::Loop | Scheme::Midpoint => (c.vertices + c.edges, 4 * c.faces),
+        // Chaikin boundary: a corner point per corner, two points per boundary edge; a face per
+        // face, per edge and per used vertex.
+        Scheme::DooSabin => (c.corners + 2 * c.boundary_edges, c.faces + c.edges + c.used_vertices),
+        Scheme::QuadTriangle => (
+            c.vertices + c.edges + (c.faces - c.triangles),
+            4 * c.triangles + (c.corners - 3 * c.triangles),
+        ),
+        Scheme::Sqrt3 if splits_boundary => (c.vertices + c.faces + c.boundary_edges, 3 * c.faces),
+        Scheme::Sqrt3 => (c.vertices + c.faces, 3 * c.faces),
+    }
+}
+
+fn face_size_ok(scheme: Scheme, n: u32) -> bool {
+    match scheme {
+        Scheme::CatmullClark | Scheme::Bilinear => n == 4,
+        Scheme::Loop | Scheme::Midpoint | Scheme::Sqrt3 => n == 3,
+        Scheme::QuadTriangle => n == 3 || n == 4,
+        Scheme::DooSabin => n >= 3,
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The properties
+
+fn options(scheme: Scheme, levels: u32) -> Options {
+    Options::new(scheme, levels)
+}
+
+/// Checks one scheme on one random mesh, levels 1 and 2.
+fn check_scheme(scheme: Scheme, spec: &Spec) -> Result<(), TestCaseError> {
+    let input = input_for(scheme, spec);
+    let c0 = counts(&input);
+    let one = subdivide(&input, &options(scheme, 1))
+        .map_err(|e| TestCaseError::fail(format!("level 1: {e}")))?;
+    let two = subdivide(&input, &options(scheme, 2))
+        .map_err(|e| TestCaseError::fail(format!("level 2: {e}")))?;
+    let c1 = counts(&one);
+    let c2 = counts(&two);
+    let levels = [(1, &one, c0, c1, false), (2, &two, c1, c2, scheme == Scheme::Sqrt3)];
+    for (level, out, before, after, splits_boundary) in levels {
+        let (vertices, faces) = one_level(scheme, &before, splits_boundary);
+        prop_assert_eq!(
+            (after.vertices, after.faces),
+            (vertices, faces),
+            "{} level {}: counts from {:?}",
+            scheme,
+            level,
+            before
+        );
+        prop_assert!(
+            out.positions.iter().all(|x| x.is_finite()),
+            "{} level {}: NaN",
+            scheme,
+            level
+        );
+        prop_assert!(
+            out.face_sizes.iter().all(|&n| face_size_ok(scheme, n)),
+            "{} level {}: face sizes {:?}",
+            scheme,
+            level,
+            out.face_sizes
+        );
+        prop_assert!(
+            subsurf::HalfEdgeMesh::from_poly(out).is_ok(),
+            "{} level {}: the result is not a valid mesh",
+            scheme,
+            level
+        );
+        // Every scheme here keeps the topology of the surface: same V - E + F.
+        prop_assert_eq!(
+            euler(&after),
+            euler(&c0),
+            "{} level {}: Euler characteristic",
+            scheme,
+            level
+        );
+    }
+    // Deterministic: a second run gives the same bytes.
+    let again = subdivide(&input, &options(scheme, 2)).unwrap();
+    prop_assert!(same_bytes(&two, &again), "{}: a second run differs", scheme);
+    Ok(())
+}
+
+fn same_bytes(a: &PolyMesh, b: &PolyMesh) -> bool {
+    a.indices == b.indices
+        && a.face_sizes == b.face_sizes
+        && a.positions.len() == b.positions.len()
+        && a.positions.iter().zip(&b.positions).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+const CASES: u32 = 256;
+
+macro_rules! scheme_properties {
+    ($($name:ident: $scheme:expr;)*) => {
+        $(
+            proptest! {
+                #![proptest_config(Config { cases: CASES, failure_persistence: None, ..Config::default() })]
+                #[test]
+                fn $name(spec in spec()) {
+                    check_scheme($scheme, &spec)?;
+                }
+            }
+        )*
+    };
+}
+
+scheme_properties! {
+    catmull_clark: Scheme::CatmullClark;
+    loop_subdivision: Scheme::Loop;
+    doo_sabin: Scheme::DooSabin;
+    quad_triangle: Scheme::QuadTriangle;
+    sqrt3: Scheme::Sqrt3;
+    bilinear: Scheme::Bilinear;
+    midpoint: Scheme::Midpoint;
+}
+
+#[test]
+fn every_scheme_has_a_property_test() {
+    // The list above must grow with Scheme::ALL.
+    assert_eq!(Scheme::ALL.len(), 7);
+}
+
+proptest! {
+    #![proptest_config(Config { cases: CASES, failure_persistence: None, ..Config::default() })]
+    /// Every boundary rule a scheme accepts gives a valid, finite result with the counts of
+    /// the default rule (boundary rules move points, not topology), except Doo-Sabin's 'none',
+    /// which drops the boundary faces, and Catmull-Clark/Loop's 'none', which makes holes.
+    #[test]
+    fn boundary_rules_move_points_not_topology(spec in spec(), pick in 0usize..7) {
+        let scheme = Scheme::ALL[pick];
+        let input = input_for(scheme, &spec);
+        let reference = subdivide(&input, &options(scheme, 1)).unwrap();
+        for &boundary in Boundary::ALL {
+            match subdivide(&input, &options(scheme, 1).with_boundary(boundary)) {
+                Ok(out) => {
+                    prop_assert!(out.positions.iter().all(|x| x.is_finite()));
+                    prop_assert!(subsurf::HalfEdgeMesh::from_poly(&out).is_ok());
+                    if boundary != Boundary::None {
+                        prop_assert_eq!(&out.face_sizes, &reference.face_sizes, "{} {}", scheme, boundary);
+                        prop_assert_eq!(&out.indices, &reference.indices, "{} {}", scheme, boundary);
+                    }
+                }
+                Err(e) => {
+                    prop_assert!(boundary == Boundary::None, "{} refused {}: {}", scheme, boundary, e);
+                }
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Native vs wasm: the fixture
+
+/// Where the fixture goes: `artifacts/` under the crate root (ignored by git).
+fn fixture_path() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("artifacts/native-vs-wasm.json")
+}
+
+fn json_u32s(values: impl IntoIterator<Item = u32>) -> String {
+    let items: Vec<String> = values.into_iter().map(|v| v.to_string()).collect();
+    format!("[{}]", items.join(","))
+}
+
+/// Seeded random meshes (proptest's deterministic runner, so the same every run) through every
+/// scheme at levels 1 and 2, with the native results, as JSON. Floats are written as their bit
+/// patterns so that the wasm side gets exactly the same inputs.
+#[test]
+fn native_vs_wasm_fixture() {
+    let mut runner = TestRunner::deterministic();
+    let strategy = spec();
+    let mut cases = Vec::new();
+    for round in 0..10 {
+        for (k, &scheme) in Scheme::ALL.iter().enumerate() {
+            let spec = strategy.new_tree(&mut runner).unwrap().current();
+            let input = input_for(scheme, &spec);
+            let levels = 1 + (round + k) as u32 % 2;
+            let boundary =
+                [Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average]
+                    [(round + 2 * k) % 4];
+            let out = subdivide(&input, &options(scheme, levels).with_boundary(boundary))
+                .unwrap_or_else(|e| panic!("{scheme} on {spec:?}: {e}"));
+            let mesh = |m: &PolyMesh| {
+                format!(
+                    "{{\"positionBits\":{},\"indices\":{},\"faceSizes\":{}}}",
+                    json_u32s(m.positions.iter().map(|x| x.to_bits())),
+                    json_u32s(m.indices.iter().copied()),
+                    json_u32s(m.face_sizes.iter().copied())
+                )
+            };
+            cases.push(format!(
+                "{{\"name\":\"{scheme} round {round}\",\"options\":{{\"scheme\":\"{scheme}\",\"levels\":{levels},\"boundary\":\"{boundary}\"}},\"input\":{},\"native\":{}}}",
+                mesh(&input),
+                mesh(&out)
+            ));
+        }
+    }
+    let path = fixture_path();
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    let json = format!("{{\"tolerance\":1e-6,\"cases\":[\n{}\n]}}\n", cases.join(",\n"));
+    std::fs::write(&path, json).unwrap();
+    assert_eq!(cases.len(), 10 * Scheme::ALL.len());
+    // The same generator gives the same meshes on a second pass.
+    let mut again = TestRunner::deterministic();
+    let first = build(&strategy.new_tree(&mut again).unwrap().current());
+    let mut runner = TestRunner::deterministic();
+    assert_eq!(first, build(&strategy.new_tree(&mut runner).unwrap().current()));
+}
