@@ -64,7 +64,7 @@ fi
 check_wasm_counts() {
   local log=$LOGS/wasm-tests.log
   local expected
-  expected=$(grep -c '^#\[wasm_bindgen_test\]' tests/common/wasm_cases.rs)
+  expected=$(cat tests/common/wasm_*.rs | grep -c '^#\[wasm_bindgen_test\]')
   local ok=0
   for target in wasm_node wasm_browser; do
     local line

@@ -475,3 +475,6 @@ fn errors_are_js_errors_and_the_module_keeps_working() {
     let seed = ok(subdivide(&cube(), &levels(1.0)));
     assert!(close(&point(&f32s(&seed, "positions"), 0), &[-5.0 / 9.0; 3]));
 }
+
+#[path = "wasm_bad_inputs.rs"]
+mod bad_inputs;

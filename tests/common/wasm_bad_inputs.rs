@@ -1,0 +1,248 @@
+//! Bad input never breaks subsurf, through the JS API in Node and in headless Chromium: every case
+//! of the catalogue in `bad_inputs.rs` (shared with the Rust API and CLI runners of
+//! `tests/bad_inputs.rs`), each followed by a good call on the same module instance; and the
+//! caller's typed arrays stay byte-identical through every scheme.
+
+use super::*;
+
+#[path = "bad_inputs.rs"]
+mod catalogue;
+
+use catalogue::{Case, Expect, Input, JsField, JsMesh, Stage, Val};
+
+fn js_value(value: &Val) -> JsValue {
+    match value {
+        Val::Str(s) => JsValue::from_str(s),
+        Val::Num(n) => JsValue::from_f64(*n),
+        Val::List(names) => names.iter().map(|n| JsValue::from_str(n)).collect::<Array>().into(),
+        Val::Bool(b) => JsValue::from_bool(*b),
+    }
+}
+
+fn js_options(case: &Case) -> JsValue {
+    if let Some(value) = &case.options.not_an_object {
+        return js_value(value);
+    }
+    if case.options.entries.is_empty() {
+        return JsValue::UNDEFINED;
+    }
+    let fields: Vec<(&str, JsValue)> =
+        case.options.entries.iter().map(|(k, v)| (*k, js_value(v))).collect();
+    object(&fields)
+}
+
+fn js_field(field: &JsField) -> Option<JsValue> {
+    Some(match field {
+        JsField::Float32(v) => Float32Array::from(&v[..]).into(),
+        JsField::Uint32(v) => Uint32Array::from(&v[..]).into(),
+        JsField::Float64(v) => js_sys::Float64Array::from(&v[..]).into(),
+        JsField::Int32(v) => js_sys::Int32Array::from(&v[..]).into(),
+        JsField::Uint8(v) => js_sys::Uint8Array::from(&v[..]).into(),
+        JsField::Plain(v) => v.iter().map(|&x| JsValue::from_f64(x)).collect::<Array>().into(),
+        JsField::Missing => return None,
+    })
+}
+
+fn js_mesh_object(mesh: &JsMesh) -> JsValue {
+    if let Some(value) = &mesh.not_an_object {
+        return js_value(value);
+    }
+    let mut fields = Vec::new();
+    for (key, field) in [
+        ("positions", &mesh.positions),
+        ("indices", &mesh.indices),
+        ("faceSizes", &mesh.face_sizes),
+    ] {
+        if let Some(value) = js_field(field) {
+            fields.push((key, value));
+        }
+    }
+    if let Some(extra) = mesh.extra {
+        fields.push((extra, Uint32Array::from(&[4u32; 6][..]).into()));
+    }
+    object(&fields)
+}
+
+/// A copy of every typed array of a mesh object, to check it is unchanged afterwards.
+fn snapshot(mesh: &JsValue) -> Vec<(String, Vec<u8>)> {
+    if !mesh.is_object() {
+        return Vec::new();
+    }
+    let keys = Object::keys(mesh.unchecked_ref::<Object>());
+    keys.iter()
+        .filter_map(|key| {
+            let value = Reflect::get(mesh, &key).ok()?;
+            if !js_sys::ArrayBuffer::is_view(&value) {
+                return None;
+            }
+            let view: js_sys::Uint8Array = js_sys::Uint8Array::new_with_byte_offset_and_length(
+                &Reflect::get(&value, &"buffer".into()).ok()?,
+                Reflect::get(&value, &"byteOffset".into()).ok()?.as_f64()? as u32,
+                Reflect::get(&value, &"byteLength".into()).ok()?.as_f64()? as u32,
+            );
+            Some((key.as_string()?, view.to_vec()))
+        })
+        .collect()
+}
+
+/// The good call after every bad one: the cube at level 1 is 26 vertices and 24 quads, and its
+/// first corner moves to 5/9 of itself (seed 003).
+fn module_still_works(after: &str) {
+    let out = match subdivide(&cube(), &levels(1.0)) {
+        Ok(out) => out,
+        Err(e) => panic!("after {after}: the good call failed: {}", message(e)),
+    };
+    assert_eq!(f32s(&out, "positions").len(), 3 * 26, "after {after}: vertices");
+    assert_eq!(u32s(&out, "faceSizes"), vec![4; 24], "after {after}: faces");
+    assert!(close(&point(&f32s(&out, "positions"), 0), &[-5.0 / 9.0; 3]), "after {after}");
+}
+
+/// The message of a call that must fail, checked for every fragment.
+fn expect_error(name: &str, what: &str, result: Result<JsValue, JsError>, fragments: &[&str]) {
+    match result {
+        Ok(value) => panic!("{name}: {what} succeeded: {value:?}"),
+        Err(error) => {
+            let m = message(error);
+            assert!(!m.is_empty(), "{name}: {what} threw an empty message");
+            for fragment in fragments {
+                assert!(m.contains(fragment), "{name}: {what}: {m:?} should mention {fragment:?}");
+            }
+        }
+    }
+}
+
+/// Runs one case: every call that must fail does, with the fragments, and leaves the caller's
+/// arrays as they were.
+fn run_case(case: &Case, fragments: &[&str]) {
+    let name = case.name;
+    let mesh = match &case.input {
+        Input::Obj(text) => {
+            let result = read_obj(&JsValue::from_str(text));
+            if case.stage == Stage::Obj {
+                return expect_error(name, "readObj", result, fragments);
+            }
+            match result {
+                Ok(mesh) => mesh,
+                Err(e) => panic!("{name}: readObj refused a valid file: {}", message(e)),
+            }
+        }
+        Input::Arrays { positions, indices, face_sizes } => {
+            js_mesh(positions, indices, face_sizes.as_deref())
+        }
+        Input::Js(mesh) => js_mesh_object(mesh),
+        Input::ObjBytes(_) => panic!("{name}: not a JS input"),
+    };
+    let before = snapshot(&mesh);
+    expect_error(name, "subdivide", subdivide(&mesh, &js_options(case)), fragments);
+    if case.stage == Stage::Mesh {
+        expect_error(name, "writeObj", write_obj(&mesh).map(JsValue::from), fragments);
+    }
+    assert_eq!(snapshot(&mesh), before, "{name}: the failed call changed the caller's arrays");
+}
+
+/// Every case of the catalogue whose JS expectation is an error. Pending cases (the library
+/// does not refuse them yet) are skipped here: `result_beyond_wasm_memory` would trap the module.
+#[wasm_bindgen_test]
+fn bad_input_catalogue_through_the_js_api() {
+    let mut ran = 0;
+    let mut pending = Vec::new();
+    for case in catalogue::catalogue() {
+        match &case.js {
+            Expect::Error(fragments) => {
+                run_case(&case, fragments);
+                module_still_works(case.name);
+                ran += 1;
+            }
+            Expect::Pending { .. } => pending.push(case.name),
+            Expect::NotApplicable(_) => {}
+        }
+    }
+    assert!(ran >= 40, "only {ran} catalogue cases ran through the JS API");
+    assert_eq!(pending, ["max_bytes_exceeded", "result_beyond_wasm_memory"], "pending JS cases");
+}
+
+/// The guard refuses from the prediction, before any work: the message gives the predicted
+/// face count and names the option, and the same instance then subdivides at the limit.
+#[wasm_bindgen_test]
+fn max_faces_guard_gives_the_predicted_size_and_the_option() {
+    let options = object(&[("levels", 5.into()), ("maxFaces", 6143.into())]);
+    let m = thrown(subdivide(&cube(), &options));
+    assert_mentions(&m, &["5 level(s) would make 6144 faces", "limit of 6143", "maxFaces"]);
+    let options = object(&[("levels", 5.into()), ("maxFaces", 6144.into())]);
+    assert_eq!(u32s(&ok(subdivide(&cube(), &options)), "faceSizes").len(), 6144);
+    // Far beyond memory: refused at once, the instance keeps working.
+    let options = object(&[("levels", 32.into()), ("maxFaces", 9_007_199_254_740_991.0.into())]);
+    assert_mentions(&thrown(subdivide(&cube(), &options)), &["32 level(s) would make", "maxFaces"]);
+    module_still_works("a 32-level request");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Inputs are never mutated
+
+/// A square, a triangle roof on it and a pentagon beside it: open, manifold, mixed sizes.
+fn house() -> (Vec<f32>, Vec<u32>, Vec<u32>) {
+    #[rustfmt::skip]
+    let positions = vec![
+        0., 0., 0.,  1., 0., 0.1,  1., 1., 0.,  0., 1., 0.2,  0.5, 1.6, 0.,
+        1.8, -0.2, 0.3,  2.3, 0.6, 0.,  1.7, 1.3, -0.1,
+    ];
+    let indices = vec![0, 1, 2, 3, 3, 2, 4, 1, 5, 6, 7, 2];
+    (positions, indices, vec![4, 3, 5])
+}
+
+/// An open fan of four triangles around vertex 0.
+fn fan() -> (Vec<f32>, Vec<u32>, Vec<u32>) {
+    let positions =
+        vec![0., 0., 0.3, 1., 0., 0., 0.6, 0.8, 0., -0.4, 0.9, 0., -1., 0.1, 0., -0.5, -0.8, 0.];
+    (positions, vec![0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5], vec![3; 4])
+}
+
+fn bytes_of(array: &JsValue) -> Vec<u8> {
+    js_sys::Uint8Array::new(&Reflect::get(array, &"buffer".into()).unwrap()).to_vec()
+}
+
+#[wasm_bindgen_test]
+fn caller_arrays_are_byte_identical_after_every_scheme() {
+    let (cp, ci, cs) = cube_arrays();
+    let (hp, hi, hs) = house();
+    let (tp, ti) = tetrahedron_arrays();
+    let (fp, fi, fs) = fan();
+    let polygons = [("cube", cp, ci, Some(cs)), ("house", hp, hi, Some(hs))];
+    let triangles = [("tetrahedron", tp, ti, None), ("fan", fp, fi, Some(fs))];
+    let mut calls = 0;
+    for scheme in subsurf::Scheme::ALL {
+        let meshes = if scheme.triangles_only() { &triangles } else { &polygons };
+        for (name, positions, indices, sizes) in meshes {
+            for level in [1, 2] {
+                let mesh = js_mesh(positions, indices, sizes.as_deref());
+                let keys = ["positions", "indices", "faceSizes"];
+                let arrays: Vec<(&str, JsValue)> = keys
+                    .iter()
+                    .map(|&k| (k, field(&mesh, k)))
+                    .filter(|(_, v)| !v.is_undefined())
+                    .collect();
+                let before: Vec<Vec<u8>> = arrays.iter().map(|(_, a)| bytes_of(a)).collect();
+                let options = object(&[("scheme", scheme.name().into()), ("levels", level.into())]);
+                let what = format!("{scheme} level {level} on the {name}");
+                let out = match subdivide(&mesh, &options) {
+                    Ok(out) => out,
+                    Err(e) => panic!("{what}: {}", message(e)),
+                };
+                assert!(!u32s(&out, "faceSizes").is_empty(), "{what}: no faces");
+                for ((key, array), bytes) in arrays.iter().zip(&before) {
+                    assert_eq!(&bytes_of(array), bytes, "{what}: the bytes of {key} changed");
+                    assert!(field(&mesh, key) == *array, "{what}: mesh.{key} was replaced");
+                }
+                assert_eq!(f32s(&mesh, "positions"), *positions, "{what}");
+                assert_eq!(u32s(&mesh, "indices"), *indices, "{what}");
+                assert_eq!(Object::keys(options.unchecked_ref::<Object>()).length(), 2, "{what}");
+                assert!(write_obj(&mesh).is_ok(), "{what}: writeObj");
+                for ((key, array), bytes) in arrays.iter().zip(&before) {
+                    assert_eq!(&bytes_of(array), bytes, "{what}: writeObj changed {key}");
+                }
+                calls += 1;
+            }
+        }
+    }
+    assert_eq!(calls, subsurf::Scheme::ALL.len() * 4);
+}
