@@ -18,7 +18,6 @@ use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::scheme::{self, Boundary, Options, Scheme};
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
-use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
@@ -79,7 +78,7 @@ export interface SubdivideResult extends PolygonMesh {
 }
 "#;
 
-/// Option keys, in the order error messages list them. Must match the fields of [`OptionsInput`].
+/// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
 const OPTION_KEYS: [&str; 4] = ["scheme", "levels", "boundary", "maxFaces"];
 
 /// Mesh fields read from the input object.
@@ -168,25 +167,6 @@ pub fn version() -> String {
 // ---------------------------------------------------------------------------------------------
 // Options
 
-/// The options object as serde reads it. Each field is kept as the raw JS value so that the
-/// checks below can name the field and show the value that was given; serde alone would say
-/// "invalid type: string, expected u32" without saying which option.
-///
-/// `deny_unknown_fields` does not fire here: serde-wasm-bindgen reads a struct by asking the
-/// object for each known field, so it never sees the others. [`check_keys`] catches those.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields, rename_all = "camelCase")]
-struct OptionsInput {
-    #[serde(default, with = "serde_wasm_bindgen::preserve")]
-    scheme: JsValue,
-    #[serde(default, with = "serde_wasm_bindgen::preserve")]
-    levels: JsValue,
-    #[serde(default, with = "serde_wasm_bindgen::preserve")]
-    boundary: JsValue,
-    #[serde(default, with = "serde_wasm_bindgen::preserve")]
-    max_faces: JsValue,
-}
-
 fn option_error(message: String) -> Error {
     Error::InvalidOption(message)
 }
@@ -195,18 +175,23 @@ fn read_options(value: &JsValue) -> Result<Options, Error> {
     if value.is_undefined() || value.is_null() {
         return Ok(Options::default());
     }
-    if !value.is_object() || Array::is_array(value) {
+    if !value.is_object() || is_array(value) {
         return Err(option_error(format!(
             "options must be an object such as {{ levels: 2 }}, got {}",
             describe(value)
         )));
     }
     check_keys(value, &OPTION_KEYS, &[], "option", "options").map_err(option_error)?;
-    let input: OptionsInput = serde_wasm_bindgen::from_value(value.clone())
-        .map_err(|e| option_error(format!("could not read options: {e}")))?;
+    // Each field is read as a raw JS value so that the checks below can name the option and
+    // show what was given. Reflect.get returns a throwing getter's exception as an error
+    // instead of letting it unwind through this code.
+    let field = |key: &str| {
+        Reflect::get(value, &JsValue::from_str(key))
+            .map_err(|e| option_error(format!("reading options.{key} threw {}", describe(&e))))
+    };
 
-    let levels = read_levels(&input.levels)?;
-    let schemes = match read_schemes(&input.scheme)? {
+    let levels = read_levels(&field("levels")?)?;
+    let schemes = match read_schemes(&field("scheme")?)? {
         SchemeChoice::Default => vec![Scheme::default(); levels.unwrap_or(1) as usize],
         SchemeChoice::One(scheme) => vec![scheme; levels.unwrap_or(1) as usize],
         SchemeChoice::PerLevel(list) => {
@@ -222,8 +207,8 @@ fn read_options(value: &JsValue) -> Result<Options, Error> {
             list
         }
     };
-    let boundary = read_boundary(&input.boundary)?;
-    let max_faces = read_max_faces(&input.max_faces)?;
+    let boundary = read_boundary(&field("boundary")?)?;
+    let max_faces = read_max_faces(&field("maxFaces")?)?;
     let defaults = Options::default();
     Ok(Options {
         schemes,
@@ -285,15 +270,23 @@ fn read_schemes(value: &JsValue) -> Result<SchemeChoice, Error> {
     if let Some(name) = value.as_string() {
         return name.parse().map(SchemeChoice::One);
     }
-    if let Some(list) = value.dyn_ref::<Array>() {
-        if list.length() > MAX_LEVELS {
+    if is_array(value) {
+        // Read through Reflect, which turns a Proxy trap's exception into an error.
+        let threw = |what: String, e: JsValue| {
+            option_error(format!("reading options.{what} threw {}", describe(&e)))
+        };
+        let length = Reflect::get(value, &JsValue::from_str("length"))
+            .map_err(|e| threw("scheme.length".into(), e))?
+            .as_f64()
+            .unwrap_or(0.0);
+        if length > MAX_LEVELS as f64 {
             return Err(option_error(format!(
-                "scheme lists {} schemes, one per level; at most {MAX_LEVELS} levels are allowed",
-                list.length()
+                "scheme lists {length} schemes, one per level; at most {MAX_LEVELS} levels are allowed"
             )));
         }
-        let mut schemes = Vec::with_capacity(list.length() as usize);
-        for (i, item) in list.iter().enumerate() {
+        let mut schemes = Vec::with_capacity(length as usize);
+        for i in 0..length as u32 {
+            let item = Reflect::get_u32(value, i).map_err(|e| threw(format!("scheme[{i}]"), e))?;
             let scheme = match item.as_string() {
                 Some(name) => name.parse().map_err(|e| match e {
                     Error::InvalidOption(m) => option_error(format!("scheme[{i}]: {m}")),
@@ -327,7 +320,7 @@ fn mesh_error(message: String) -> Error {
 
 /// Copies the caller's typed arrays into a [`PolyMesh`].
 fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
-    if !value.is_object() || Array::is_array(value) {
+    if !value.is_object() || is_array(value) {
         return Err(mesh_error(format!(
             "mesh must be an object {{ positions: Float32Array, indices: Uint32Array, \
              faceSizes?: Uint32Array }}, got {}",
@@ -338,14 +331,14 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
         .map_err(mesh_error)?;
 
     let positions = get(value, "positions")?;
-    let positions = match positions.dyn_ref::<Float32Array>() {
-        Some(array) => copy_f32(array, "positions")?,
-        None => return Err(wrong_array_type("positions", "Float32Array", &positions)),
+    let positions = match typed_array_kind(&positions).as_deref() {
+        Some("Float32Array") => copy_f32(&positions, "positions")?,
+        _ => return Err(wrong_array_type("positions", "Float32Array", &positions)),
     };
     let indices = get(value, "indices")?;
-    let indices = match indices.dyn_ref::<Uint32Array>() {
-        Some(array) => copy_u32(array, "indices")?,
-        None => return Err(wrong_array_type("indices", "Uint32Array", &indices)),
+    let indices = match typed_array_kind(&indices).as_deref() {
+        Some("Uint32Array") => copy_u32(&indices, "indices")?,
+        _ => return Err(wrong_array_type("indices", "Uint32Array", &indices)),
     };
     let face_sizes = get(value, "faceSizes")?;
     let face_sizes = if face_sizes.is_undefined() || face_sizes.is_null() {
@@ -358,26 +351,49 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
         }
         vec![3; indices.len() / 3]
     } else {
-        match face_sizes.dyn_ref::<Uint32Array>() {
-            Some(array) => copy_u32(array, "faceSizes")?,
-            None => return Err(wrong_array_type("faceSizes", "Uint32Array", &face_sizes)),
+        match typed_array_kind(&face_sizes).as_deref() {
+            Some("Uint32Array") => copy_u32(&face_sizes, "faceSizes")?,
+            _ => return Err(wrong_array_type("faceSizes", "Uint32Array", &face_sizes)),
         }
     };
     Ok(PolyMesh { positions, indices, face_sizes })
 }
 
+/// The kind of typed array `value` is ("Float32Array", "Uint32Array", ...), or `None`. Decided
+/// by the internal slots (`ArrayBuffer.isView`, the `%TypedArray%` tag getter), not by
+/// `instanceof`: arrays from another realm (an iframe) count, and a Proxy, whose traps could
+/// throw through this code, is never a view.
+fn typed_array_kind(value: &JsValue) -> Option<String> {
+    if !js_sys::ArrayBuffer::is_view(value) {
+        return None;
+    }
+    Reflect::get(value, &js_sys::Symbol::to_string_tag()).ok()?.as_string()
+}
+
+/// `new Kind(source)` for the kind of `empty`: a fresh, fixed-length copy read through the
+/// source's internal slots, so no getter or method of the caller's object runs, the length
+/// cannot change between sizing and copying (length-tracking views of resizable buffers), and
+/// a detached buffer or a failed allocation is an error rather than an exception.
+fn fresh_copy<T: JsCast>(source: &JsValue, empty: T, field: &str) -> Result<T, Error> {
+    let constructor = empty.unchecked_ref::<Object>().constructor();
+    Reflect::construct(&constructor, &Array::of1(source))
+        .map(JsCast::unchecked_into)
+        .map_err(|e| mesh_error(format!("copying mesh.{field} threw {}", describe(&e))))
+}
+
 // The copies reserve first, so that an array too large for wasm memory is an error rather than
-// an out-of-memory abort, and copy from a fixed-length view, so that the length cannot change
-// between sizing and copying (length-tracking views of resizable buffers).
-fn copy_f32(array: &Float32Array, field: &str) -> Result<Vec<f32>, Error> {
+// an out-of-memory abort.
+fn copy_f32(source: &JsValue, field: &str) -> Result<Vec<f32>, Error> {
+    let array = fresh_copy(source, Float32Array::new_with_length(0), field)?;
     let mut out = zeroed(array.length(), field)?;
-    array.subarray(0, out.len() as u32).copy_to(&mut out);
+    array.copy_to(&mut out);
     Ok(out)
 }
 
-fn copy_u32(array: &Uint32Array, field: &str) -> Result<Vec<u32>, Error> {
+fn copy_u32(source: &JsValue, field: &str) -> Result<Vec<u32>, Error> {
+    let array = fresh_copy(source, Uint32Array::new_with_length(0), field)?;
     let mut out = zeroed(array.length(), field)?;
-    array.subarray(0, out.len() as u32).copy_to(&mut out);
+    array.copy_to(&mut out);
     Ok(out)
 }
 
@@ -401,7 +417,7 @@ fn wrong_array_type(field: &str, expected: &str, got: &JsValue) -> Error {
     if got.is_undefined() {
         return mesh_error(format!("mesh.{field} is missing; it must be a {expected}"));
     }
-    let hint = if Array::is_array(got) || is_typed_array(got) {
+    let hint = if is_array(got) || is_typed_array(got) {
         format!("; convert it with new {expected}(array)")
     } else {
         String::new()
@@ -410,7 +426,37 @@ fn wrong_array_type(field: &str, expected: &str, got: &JsValue) -> Error {
 }
 
 fn is_typed_array(value: &JsValue) -> bool {
-    js_sys::ArrayBuffer::is_view(value) && !value.is_instance_of::<js_sys::DataView>()
+    typed_array_kind(value).is_some_and(|kind| kind != "DataView")
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `Array.isArray`, which throws for a revoked Proxy: `catch` makes that an `Err`.
+    #[wasm_bindgen(catch, js_namespace = Array, js_name = isArray)]
+    fn checked_is_array(value: &JsValue) -> Result<bool, JsValue>;
+}
+
+fn is_array(value: &JsValue) -> bool {
+    checked_is_array(value).unwrap_or(false)
+}
+
+/// True when `Error.prototype` is on `value`'s prototype chain, walked with
+/// `Reflect.getPrototypeOf` (errors, not exceptions) rather than `instanceof`, whose Proxy
+/// traps could throw through this code.
+fn is_error(value: &JsValue) -> bool {
+    let Ok(error_prototype) = Reflect::get_prototype_of(&js_sys::Error::new("").into()) else {
+        return false;
+    };
+    let mut current = value.clone();
+    for _ in 0..64 {
+        match Reflect::get_prototype_of(&current) {
+            Ok(prototype) if prototype.is_null() => return false,
+            Ok(prototype) if *prototype == *error_prototype => return true,
+            Ok(prototype) => current = prototype.into(),
+            Err(_) => return false,
+        }
+    }
+    false
 }
 
 /// A plain object of fresh typed arrays (copies, never views of wasm memory).
@@ -524,8 +570,9 @@ fn describe(value: &JsValue) -> String {
     if value.is_function() {
         return "function".into();
     }
-    if let Some(error) = value.dyn_ref::<js_sys::Error>() {
-        return format!("Error '{}'", String::from(error.message()));
+    if is_error(value) {
+        let message = Reflect::get(value, &JsValue::from_str("message")).ok();
+        return format!("Error '{}'", message.and_then(|m| m.as_string()).unwrap_or_default());
     }
     constructor_name(value).unwrap_or_else(|| "object".into())
 }

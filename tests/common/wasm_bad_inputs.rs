@@ -246,3 +246,140 @@ fn caller_arrays_are_byte_identical_after_every_scheme() {
     }
     assert_eq!(calls, subsurf::Scheme::ALL.len() * 4);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Hostile JS values
+
+/// A value made by a snippet of JS (`return ...`).
+fn js(body: &str) -> JsValue {
+    js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
+}
+
+/// Objects a page can pass by mistake or on purpose: getters and proxies that throw, detached
+/// and shared buffers, typed-array subclasses, properties shadowing `length`. Each call must
+/// return (an error or a result), never let a JS exception run through the Rust code, and the
+/// instance must keep working.
+#[wasm_bindgen_test]
+fn hostile_js_values_give_errors_not_exceptions() {
+    let cube_fields = "positions: new Float32Array([-1,-1,-1, 1,-1,-1, -1,1,-1, 1,1,-1, -1,-1,1, 1,-1,1, -1,1,1, 1,1,1]), \
+         indices: new Uint32Array([0,2,3,1, 4,5,7,6, 0,1,5,4, 2,6,7,3, 0,4,6,2, 1,3,7,5]), \
+         faceSizes: new Uint32Array([4,4,4,4,4,4])";
+    let revoked = "const r = Proxy.revocable({}, {}); r.revoke(); return r.proxy;";
+    let errors: Vec<(&str, JsValue, JsValue, &[&str])> = vec![
+        (
+            "a throwing positions getter",
+            js("return { get positions() { throw new Error('boom'); }, indices: new Uint32Array(3) }"),
+            JsValue::UNDEFINED,
+            &["reading mesh.positions threw", "boom"],
+        ),
+        (
+            "a mesh proxy whose keys throw",
+            js("return new Proxy({}, { ownKeys() { throw new Error('no keys'); } })"),
+            JsValue::UNDEFINED,
+            &["mesh fields threw", "no keys"],
+        ),
+        ("a revoked proxy as the mesh", js(revoked), JsValue::UNDEFINED, &["mesh fields threw"]),
+        (
+            "an options proxy whose keys throw",
+            cube(),
+            js("return new Proxy({}, { ownKeys() { throw new Error('no keys'); } })"),
+            &["options threw", "no keys"],
+        ),
+        ("a revoked proxy as the options", cube(), js(revoked), &["options threw"]),
+        (
+            "a throwing levels getter",
+            cube(),
+            js("return { get levels() { throw new Error('nope'); } }"),
+            &["reading options.levels threw", "nope"],
+        ),
+        (
+            "a scheme list whose items throw",
+            cube(),
+            js("return { scheme: new Proxy(['loop'], { get(t, k) { if (k === '0') throw new Error('item'); return t[k]; } }) }"),
+            &["reading options.scheme[0] threw", "item"],
+        ),
+        (
+            "a proxy around a Float32Array as positions",
+            js(&format!(
+                "const m = {{ {cube_fields} }}; m.positions = new Proxy(m.positions, {{ getPrototypeOf() {{ throw new Error('proto'); }} }}); return m;"
+            )),
+            JsValue::UNDEFINED,
+            &["mesh.positions must be a Float32Array"],
+        ),
+        (
+            "an error whose prototype trap throws, as the levels",
+            cube(),
+            js("return { levels: new Proxy(new Error('x'), { getPrototypeOf() { throw new Error('proto'); } }) }"),
+            &["levels must be a whole number"],
+        ),
+        (
+            "a detached positions buffer",
+            js(&format!(
+                "const m = {{ {cube_fields} }}; structuredClone(m.positions.buffer, {{ transfer: [m.positions.buffer] }}); return m;"
+            )),
+            JsValue::UNDEFINED,
+            &["mesh.positions"],
+        ),
+        (
+            "a positions array whose length property throws",
+            js(&format!(
+                "const m = {{ {cube_fields} }}; Object.defineProperty(m.positions, 'length', {{ get() {{ throw new Error('no length'); }} }}); return m;"
+            )),
+            JsValue::UNDEFINED,
+            &[],
+        ),
+        (
+            "a positions array whose subarray method throws",
+            js(&format!(
+                "const m = {{ {cube_fields} }}; m.positions.subarray = () => {{ throw new Error('no subarray'); }}; return m;"
+            )),
+            JsValue::UNDEFINED,
+            &[],
+        ),
+    ];
+    for (what, mesh, options, fragments) in errors {
+        match subdivide(&mesh, &options) {
+            Ok(out) => {
+                // Reading the length from the prototype instead of the shadowing property is
+                // also fine: then the result must be the cube's.
+                assert!(fragments.is_empty(), "{what}: succeeded");
+                assert_eq!(u32s(&out, "faceSizes").len(), 24, "{what}");
+            }
+            Err(e) => assert_mentions(&message(e), fragments),
+        }
+        module_still_works(what);
+    }
+
+    let fine = [
+        ("a Float32Array subclass", format!("class P extends Float32Array {{}}; const m = {{ {cube_fields} }}; m.positions = new P(m.positions); return m;")),
+        ("views into a larger buffer", format!("const m = {{ {cube_fields} }}; const b = new ArrayBuffer(1024); const p = new Float32Array(b, 64, 24); p.set(m.positions); m.positions = p; return m;")),
+        ("a frozen mesh object", format!("return Object.freeze({{ {cube_fields} }});")),
+        (
+            "a mesh with a null prototype",
+            format!("return Object.assign(Object.create(null), {{ {cube_fields} }});"),
+        ),
+    ];
+    for (what, body) in fine {
+        let out = match subdivide(&js(&body), &levels(1.0)) {
+            Ok(out) => out,
+            Err(e) => panic!("{what}: {}", message(e)),
+        };
+        assert_eq!(u32s(&out, "faceSizes").len(), 24, "{what}");
+    }
+    if js("return typeof SharedArrayBuffer").as_string().as_deref() == Some("function") {
+        let body = format!("const m = {{ {cube_fields} }}; const p = new Float32Array(new SharedArrayBuffer(96)); p.set(m.positions); m.positions = p; return m;");
+        let out = ok(subdivide(&js(&body), &levels(1.0)));
+        assert_eq!(u32s(&out, "faceSizes").len(), 24, "shared buffer");
+    }
+    // Typed arrays of another realm (an iframe's) are typed arrays too.
+    if js("return typeof document").as_string().as_deref() == Some("object") {
+        let body = format!(
+            "const f = document.createElement('iframe'); document.body.appendChild(f); \
+             const m = {{ {cube_fields} }}; m.positions = new f.contentWindow.Float32Array(m.positions); \
+             m.indices = new f.contentWindow.Uint32Array(m.indices); return m;"
+        );
+        let out = ok(subdivide(&js(&body), &levels(1.0)));
+        assert_eq!(u32s(&out, "faceSizes").len(), 24, "iframe arrays");
+    }
+    module_still_works("the hostile values");
+}
