@@ -476,5 +476,8 @@ fn errors_are_js_errors_and_the_module_keeps_working() {
     assert!(close(&point(&f32s(&seed, "positions"), 0), &[-5.0 / 9.0; 3]));
 }
 
+#[path = "wasm_schemes.rs"]
+mod schemes;
+
 #[path = "wasm_bad_inputs.rs"]
 mod bad_inputs;
