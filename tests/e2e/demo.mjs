@@ -1,14 +1,21 @@
 // End-to-end test of the demo page in headless Chromium (Playwright, playwright-core):
-//   node tests/e2e/demo.mjs          (after scripts/build-pkg.sh)
-// Serves www/ (with /pkg/ mapped to the freshly built pkg/) on a free port, loads the page,
-// checks that the canvas shows a shaded mesh, changes the level with the keyboard and the
-// slider and checks the face and vertex counts (cube level L: 6·4^L faces, 6·4^L + 2 vertices),
-// orbits with a mouse drag, and saves screenshots into artifacts/. Exits non-zero on failure.
+//   node tests/e2e/demo.mjs                      (after scripts/build-pkg.sh)
+//   UPDATE_SCREENSHOT=1 node tests/e2e/demo.mjs  (also rewrites docs/demo.png for the README)
+//   DEMO_URL=http://127.0.0.1:8080/ node tests/e2e/demo.mjs   (a page scripts/demo.sh serves)
+//
+// Serves www/ (with /pkg/ mapped to the freshly built pkg/) on a free port and drives the page as
+// a user would: checks that the canvas shows a shaded mesh, that the face and vertex counts shown
+// for each scheme, level and mesh equal the counts formulas, that an OBJ opened through the file
+// input is subdivided and a broken one is refused with a message while the last result stays,
+// that the memory guard refuses a level with a message, that a big job still running is
+// superseded by a later change while the page stays responsive, that the OBJ download holds the
+// shown mesh, and that mouse and touch move the camera. Screenshots go to artifacts/. Exits
+// non-zero on failure.
 import assert from 'node:assert/strict';
 import { createServer } from 'node:http';
-import { mkdirSync, readFileSync, existsSync, statSync } from 'node:fs';
+import { copyFileSync, mkdirSync, readFileSync, existsSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -57,8 +64,8 @@ async function analyze(page, png) {
       if (difference > 30) {
         mesh++;
         shades.add(data[i] >> 3);
-        hash = (hash * 31 + (i >> 2)) | 0;
       }
+      hash = (hash * 31 + data[i] * 7 + data[i + 1] * 3 + data[i + 2]) | 0;
     }
     return { total: data.length / 4, mesh, shades: shades.size, hash, background };
   }, png.toString('base64'));
@@ -69,13 +76,20 @@ function fail(message) {
   process.exitCode = 1;
 }
 
-const expectedCounts = (level) => ({ faces: 6 * 4 ** level, vertices: 6 * 4 ** level + 2 });
+// ---- the counts formulas
+// Catmull-Clark, closed mesh: F' = Σ face sizes, V' = V + E + F; after the first level all quads
+// (F' = 4F, E' = 2E + Σ face sizes). Cube: 6·4^L faces, 6·4^L + 2 vertices (L ≥ 1).
+const cubeCatmullClark = (level) => ({ faces: 6 * 4 ** level, vertices: level === 0 ? 8 : 6 * 4 ** level + 2 });
+// Loop: F' = 4F, V' = V + E. Icosahedron: 20·4^L faces, 10·4^L + 2 vertices.
+const icosahedronLoop = (level) => ({ faces: 20 * 4 ** level, vertices: 10 * 4 ** level + 2 });
 
 async function run() {
   if (!existsSync(join(root, 'pkg', 'subsurf_bg.wasm'))) throw new Error('pkg/ is not built; run scripts/build-pkg.sh');
   mkdirSync(artifacts, { recursive: true });
-  const server = await serve();
-  const url = `http://127.0.0.1:${server.address().port}/`;
+  // DEMO_URL tests a page served elsewhere, e.g. by scripts/demo.sh.
+  const server = process.env.DEMO_URL ? null : await serve();
+  const url = process.env.DEMO_URL ?? `http://127.0.0.1:${server.address().port}/`;
+  console.log(`  testing ${url}`);
   const browser = await chromium.launch({
     executablePath: CHROMIUM,
     headless: true,
@@ -83,78 +97,394 @@ async function run() {
       '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   });
   const problems = [];
+  const report = {};
   try {
-    const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+    const context = await browser.newContext({ viewport: { width: 1280, height: 800 }, hasTouch: true, acceptDownloads: true });
+    const page = await context.newPage();
     page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
     page.on('console', (message) => message.type() === 'error' && problems.push(`console error: ${message.text()}`));
     page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
 
+    // ---- ready
+    const loadStarted = Date.now();
     await page.goto(url);
-    await page.waitForFunction(() => window.subsurfReady === true || document.documentElement.dataset.error, null, { timeout: 30_000 });
-    const error = await page.evaluate(() => document.documentElement.dataset.error);
-    assert.equal(error, undefined, `the page reported an error: ${error}`);
+    await page.waitForFunction(() => window.subsurfReady === true || document.documentElement.dataset.fatal, null, { timeout: 60_000 });
+    const fatal = await page.evaluate(() => document.documentElement.dataset.fatal);
+    assert.equal(fatal, undefined, `the page could not start: ${fatal}`);
+    report.readyMs = Date.now() - loadStarted;
+    report.readyInPage = await page.evaluate(() => window.subsurfTimings);
 
     const canvas = page.locator('#view');
-    const showLevel = async (level) => {
-      const { faces, vertices } = expectedCounts(level);
-      await page
-        .waitForFunction((f) => document.documentElement.dataset.faces === String(f), faces, { timeout: 15_000 })
-        .catch(async () => {
-          const shown = await page.evaluate(() => ({ ...document.documentElement.dataset }));
-          throw new Error(`level ${level}: expected ${faces} faces drawn; the page says ${JSON.stringify(shown)}`);
-        });
-      assert.equal(await page.locator('#faces').textContent(), faces.toLocaleString('en-US'), `faces shown at level ${level}`);
-      assert.equal(await page.locator('#vertices').textContent(), vertices.toLocaleString('en-US'), `vertices shown at level ${level}`);
-      assert.equal(await page.locator('#level-value').textContent(), String(level));
-      const png = await canvas.screenshot({ path: join(artifacts, `demo-level${level}.png`) });
-      const pixels = await analyze(page, png);
-      const share = pixels.mesh / pixels.total;
-      console.log(`  level ${level}: ${faces} faces, ${vertices} vertices; mesh covers ${(100 * share).toFixed(1)}% of the canvas in ${pixels.shades} shades`);
-      assert.ok(share > 0.05 && share < 0.9, `level ${level}: mesh pixels ${(100 * share).toFixed(1)}% of the canvas`);
-      assert.ok(pixels.shades >= 3, `level ${level}: only ${pixels.shades} shades; the mesh should be shaded`);
-      return pixels;
+    const dataset = () => page.evaluate(() => ({ ...document.documentElement.dataset }));
+    // The canvas's own pixels (the page keeps its drawing buffer), without the overlays on it.
+    const shot = async (name) => {
+      const url = await canvas.evaluate((element) => element.toDataURL('image/png'));
+      const png = Buffer.from(url.slice(url.indexOf(',') + 1), 'base64');
+      writeFileSync(join(artifacts, `demo-${name}.png`), png);
+      return analyze(page, png);
     };
+    const afterFrames = () => page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+    const subdivideTimes = [];
 
-    // The page starts at level 1.
-    const level1 = await showLevel(1);
+    /** Waits until the drawn result matches `expected` (dataset fields) and no job runs. */
+    const shows = async (expected, what) => {
+      await page
+        .waitForFunction((want) => {
+          const data = document.documentElement.dataset;
+          return !data.busy && Object.entries(want).every(([key, value]) => data[key] === String(value));
+        }, expected, { timeout: 60_000 })
+        .catch(async () => {
+          throw new Error(`${what}: expected ${JSON.stringify(expected)}; the page shows ${JSON.stringify(await dataset())}`);
+        });
+      const data = await dataset();
+      subdivideTimes.push({ what, faces: Number(data.faces), ms: Number(data.subdivideMs) });
+      if (expected.faces !== undefined) {
+        assert.equal(await page.locator('#faces-out').textContent(), Number(expected.faces).toLocaleString('en-US'), `${what}: faces shown`);
+      }
+      if (expected.vertices !== undefined) {
+        assert.equal(await page.locator('#vertices-out').textContent(), Number(expected.vertices).toLocaleString('en-US'), `${what}: vertices shown`);
+      }
+      if (expected.facesIn !== undefined) {
+        assert.equal(await page.locator('#faces-in').textContent(), Number(expected.facesIn).toLocaleString('en-US'), `${what}: faces in`);
+      }
+      assert.equal(data.error, undefined, `${what}: no error expected, the page says ${data.error}`);
+      return data;
+    };
+    /** Waits until an error message is on screen and returns it. */
+    const showsError = async (what) => {
+      await page.waitForFunction(() => document.documentElement.dataset.error && !document.documentElement.dataset.busy, null, { timeout: 30_000 })
+        .catch(async () => {
+          throw new Error(`${what}: expected an error message; the page shows ${JSON.stringify(await dataset())}`);
+        });
+      const text = await page.locator('#message').textContent();
+      assert.ok(await page.locator('#message').isVisible(), `${what}: the message is visible`);
+      assert.equal(await page.locator('#message').getAttribute('class'), 'error');
+      return text;
+    };
+    const setLevel = (level) => page.locator('#level').evaluate((input, value) => {
+      input.value = String(value);
+      input.dispatchEvent(new Event('input', { bubbles: true }));
+    }, level);
 
-    // Keyboard on the slider, as a user would: two steps right.
+    // ---- the first view: the cube, Catmull-Clark, two levels, drawn and shaded
+    await shows({ shape: 'cube', scheme: 'catmull-clark,catmull-clark', level: 2, ...cubeCatmullClark(2), facesIn: 6, verticesIn: 8 }, 'first view');
+    const first = await shot('ready');
+    const share = first.mesh / first.total;
+    console.log(`  ready in ${report.readyMs} ms (page load to first result on screen; in the page ` +
+      `${report.readyInPage.navigationToReady.toFixed(0)} ms after navigation, the first job ${report.readyInPage.firstJobMs.toFixed(0)} ms ` +
+      `of that, its subdivision ${(await dataset()).subdivideMs} ms); mesh covers ${(100 * share).toFixed(1)}% of the canvas in ${first.shades} shades`);
+    assert.ok(share > 0.05 && share < 0.9, `mesh pixels ${(100 * share).toFixed(1)}% of the canvas`);
+    assert.ok(first.shades >= 4, `only ${first.shades} shades; the mesh should be shaded`);
+
+    // The slider with the keyboard, as a user would.
     await page.locator('#level').focus();
     await page.keyboard.press('ArrowRight');
-    await page.keyboard.press('ArrowRight');
-    const level3 = await showLevel(3);
-    assert.notEqual(level3.hash, level1.hash, 'the image changes between levels 1 and 3');
+    await shows({ level: 3, ...cubeCatmullClark(3) }, 'cube level 3 by keyboard');
+    assert.notEqual((await shot('cube-level3')).hash, first.hash, 'the picture changes with the level');
 
-    // The slider's ends.
-    for (const level of [5, 0]) {
-      await page.locator('#level').evaluate((input, value) => {
-        input.value = value;
-        input.dispatchEvent(new Event('input', { bubbles: true }));
-      }, String(level));
-      await showLevel(level);
+    // ---- Catmull-Clark on the cube: 6·4^L
+    for (const level of [0, 1, 4, 2]) {
+      await setLevel(level);
+      await shows({ scheme: Array(level).fill('catmull-clark').join(','), level, ...cubeCatmullClark(level) }, `cube, Catmull-Clark level ${level}`);
     }
 
-    // Orbit: a drag must change the picture.
-    await page.locator('#level').evaluate((input) => {
-      input.value = '2';
-      input.dispatchEvent(new Event('input', { bubbles: true }));
+    // ---- every scheme the package offers is in the menu
+    const library = await import(pathToFileURL(join(root, 'pkg', 'node.js')).href);
+    const menu = (select) => page.locator(`${select} option`).evaluateAll((options) => options.map((o) => o.value));
+    assert.deepEqual(await menu('#scheme'), library.schemeNames(), 'the scheme menu lists schemeNames()');
+    assert.deepEqual(await menu('#boundary'), library.boundaryRules(), 'the boundary menu lists boundaryRules()');
+    assert.deepEqual(await menu('#shape'), library.shapeNames(), 'the mesh menu lists shapeNames()');
+
+    // ---- Doo-Sabin on the cube, one level: F' = V + E + F = 8 + 12 + 6 = 26, V' = Σ face sizes = 24
+    await setLevel(1);
+    await shows({ level: 1, faces: 24 }, 'cube level 1');
+    await page.selectOption('#scheme', 'doo-sabin');
+    const dooSabin = await shows({ scheme: 'doo-sabin', level: 1, faces: 26, vertices: 24 }, 'Doo-Sabin on the cube');
+    const dooSabinPicture = await shot('doo-sabin-cube');
+
+    // ---- Loop on the cube: a scheme/mesh mismatch is refused and the last result stays
+    await page.selectOption('#scheme', 'loop');
+    const mismatch = await showsError('Loop on the cube');
+    console.log(`  Loop on the cube: "${mismatch.split('\n')[0]}"`);
+    assert.match(mismatch, /triangles only/);
+    assert.match(mismatch, /quad-triangle/, 'the message says what to do');
+    const afterMismatch = await dataset();
+    assert.equal(afterMismatch.faces, dooSabin.faces, 'the Doo-Sabin result is still the one shown');
+    assert.equal(afterMismatch.scheme, 'doo-sabin');
+    assert.equal((await shot('error-mismatch')).hash, dooSabinPicture.hash, 'the picture did not change');
+    await page.screenshot({ path: join(artifacts, 'demo-page-error.png') });
+
+    // ---- Loop on the icosahedron: 20·4^L faces
+    await page.selectOption('#shape', 'icosahedron');
+    for (const level of [1, 3, 0, 2]) {
+      if (level !== 1) await setLevel(level);
+      await shows({ shape: 'icosahedron', scheme: Array(level).fill('loop').join(','), level, ...icosahedronLoop(level), facesIn: 20 }, `Loop on the icosahedron, level ${level}`);
+    }
+    await shot('loop-icosahedron');
+
+    // √3 on the icosahedron: F' = 3F, V' = V + F (closed).
+    await page.selectOption('#scheme', 'sqrt3');
+    await shows({ scheme: 'sqrt3,sqrt3', faces: 180, vertices: 92 }, '√3 on the icosahedron, level 2');
+
+    // ---- a different scheme per level: Loop, then Catmull-Clark on the 80 triangles
+    await page.check('#per-level');
+    await page.locator('.level-scheme[data-level="1"]').selectOption('loop');
+    await page.locator('.level-scheme[data-level="2"]').selectOption('catmull-clark');
+    // Loop: 80 triangles, 42 vertices, 120 edges; Catmull-Clark: F' = 3·80, V' = 42 + 120 + 80.
+    await shows({ scheme: 'loop,catmull-clark', level: 2, faces: 240, vertices: 242 }, 'Loop then Catmull-Clark');
+    await page.uncheck('#per-level');
+    await page.selectOption('#scheme', 'catmull-clark');
+    // Catmull-Clark twice: 60 quads, 62 vertices, 120 edges; then 240 quads, 62 + 120 + 60 vertices.
+    await shows({ scheme: 'catmull-clark,catmull-clark', faces: 240, vertices: 242 }, 'Catmull-Clark on the icosahedron, level 2');
+
+    // ---- the other built-in meshes, Catmull-Clark level 1: F' = Σ face sizes, V' = V + E + F
+    await setLevel(1);
+    await shows({ level: 1, faces: 60 }, 'icosahedron level 1');
+    const builtIns = [
+      ['dodecahedron', { faces: 60, vertices: 20 + 30 + 12, facesIn: 12 }],
+      ['torus', { faces: 4 * 288, vertices: 288 + 576 + 288, facesIn: 288 }],
+      // 96 vertices, 69 quads, Euler characteristic −1, so 166 edges.
+      ['sheet-with-holes', { faces: 4 * 69, vertices: 96 + 166 + 69, facesIn: 69 }],
+      ['house', { faces: 5 * 4 + 4 * 3, vertices: 9 + 16 + 9, facesIn: 9 }],
+    ];
+    for (const [shape, counts] of builtIns) {
+      await page.selectOption('#shape', shape);
+      await shows({ shape, level: 1, ...counts }, `${shape}, Catmull-Clark level 1`);
+      await shot(shape);
+    }
+    // Quad/Triangle on the house: quads split into 4 quads around a face point, triangles into
+    // 4 triangles; no face point for a triangle: V' = 9 + 16 + 5.
+    await page.selectOption('#scheme', 'quad-triangle');
+    await shows({ shape: 'house', scheme: 'quad-triangle', faces: 36, vertices: 30 }, 'Quad/Triangle on the house');
+
+    // Boundary rules on the sheet: 'fixed' moves the surface.
+    await page.selectOption('#shape', 'sheet-with-holes');
+    await page.selectOption('#scheme', 'catmull-clark');
+    await setLevel(2);
+    const sheet = await shows({ shape: 'sheet-with-holes', scheme: 'catmull-clark,catmull-clark', faces: 16 * 69 }, 'sheet level 2');
+    const sheetPicture = await shot('sheet-edge-and-corner');
+    await page.selectOption('#boundary', 'fixed');
+    await page.waitForFunction((job) => document.documentElement.dataset.job !== job && !document.documentElement.dataset.busy, sheet.job);
+    assert.notEqual((await shot('sheet-fixed')).hash, sheetPicture.hash, 'the boundary rule changes the surface');
+    await page.selectOption('#boundary', 'edge-and-corner');
+    await page.waitForFunction(() => !document.documentElement.dataset.busy);
+    assert.equal((await shot('sheet-edge-and-corner-again')).hash, sheetPicture.hash, 'back to the first picture');
+
+    // ---- the user's own OBJ through the file input: a square pyramid (1 quad, 4 triangles)
+    const pyramid = ['# a square pyramid', 'v -1 0 -1', 'v 1 0 -1', 'v 1 0 1', 'v -1 0 1', 'v 0 1.5 0',
+      'f 1 2 3 4', 'f 4 3 5', 'f 3 2 5', 'f 2 1 5', 'f 1 4 5', ''].join('\n');
+    await page.setInputFiles('#file', { name: 'pyramid.obj', mimeType: 'model/obj', buffer: Buffer.from(pyramid) });
+    // Catmull-Clark level 2: level 1 has Σ face sizes = 16 quads and 5 + 8 + 5 = 18 vertices,
+    // level 2 has 64 quads and 18 + 32 + 16 = 66 vertices.
+    const opened = await shows({ shape: 'file-1', level: 2, faces: 64, vertices: 66, facesIn: 5, verticesIn: 5 }, 'pyramid.obj');
+    assert.equal(await page.locator('#shape option:checked').textContent(), 'File: pyramid.obj');
+    const pyramidPicture = await shot('pyramid-obj');
+
+    // A broken OBJ: refused with a message naming the file and the line; the pyramid stays.
+    const broken = ['v 0 0 0', 'v 1 0 0', 'v 0 1 0', 'f 1 2 7', ''].join('\n');
+    await page.setInputFiles('#file', { name: 'broken.obj', mimeType: 'model/obj', buffer: Buffer.from(broken) });
+    const brokenMessage = await showsError('broken.obj');
+    console.log(`  broken.obj: "${brokenMessage.split('\n')[0]}"`);
+    assert.match(brokenMessage, /broken\.obj/);
+    assert.match(brokenMessage, /line 4/);
+    const afterBroken = await dataset();
+    assert.equal(afterBroken.job, opened.job, 'no new result after the broken file');
+    assert.equal(afterBroken.faces, '64');
+    assert.equal(await page.locator('#shape').inputValue(), 'file-1', 'the pyramid is still the selected mesh');
+    assert.equal((await shot('error-broken-obj')).hash, pyramidPicture.hash, 'the pyramid is still drawn');
+    // The pyramid keeps working after the error.
+    await setLevel(1);
+    await shows({ shape: 'file-1', level: 1, faces: 16, vertices: 18 }, 'pyramid.obj level 1 after the error');
+
+    // ---- download the result as OBJ: the file holds the shown mesh
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+    const saved = join(artifacts, 'demo-download.obj');
+    await download.saveAs(saved);
+    const lines = readFileSync(saved, 'utf8').split('\n');
+    assert.equal(download.suggestedFilename(), 'pyramid-catmull-clark-L1.obj');
+    assert.equal(lines.filter((line) => line.startsWith('v ')).length, 18, 'vertices in the downloaded OBJ');
+    assert.equal(lines.filter((line) => line.startsWith('f ')).length, 16, 'faces in the downloaded OBJ');
+
+    // ---- drag and drop: a tetrahedron dropped on the page (Catmull-Clark level 1: 4 · 3 quads,
+    // 4 + 6 + 4 vertices)
+    const tetrahedron = ['v 1 1 1', 'v 1 -1 -1', 'v -1 1 -1', 'v -1 -1 1', 'f 1 2 3', 'f 1 3 4', 'f 1 4 2', 'f 2 4 3', ''].join('\n');
+    const dropZoneShown = await page.evaluate((text) => {
+      const transfer = new DataTransfer();
+      transfer.items.add(new File([text], 'tetrahedron.obj', { type: 'model/obj' }));
+      const event = (type) => new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true });
+      document.getElementById('view').dispatchEvent(event('dragenter'));
+      const shown = !document.getElementById('drop-zone').hidden;
+      document.getElementById('view').dispatchEvent(event('drop'));
+      return shown;
+    }, tetrahedron);
+    assert.ok(dropZoneShown, 'dragging a file over the page shows the drop zone');
+    await shows({ shape: 'file-3', level: 1, faces: 12, vertices: 14, facesIn: 4, verticesIn: 4 }, 'tetrahedron.obj dropped');
+    assert.ok(await page.locator('#drop-zone').isHidden(), 'the drop zone hides after the drop');
+    await shot('tetrahedron-dropped');
+
+    // ---- the memory guard: a level over maxFaces is refused with a message; the result stays
+    await page.selectOption('#shape', 'cube');
+    await setLevel(6);
+    const big = await shows({ shape: 'cube', level: 6, ...cubeCatmullClark(6) }, 'cube level 6');
+    await page.selectOption('#guard', '10000');
+    const guardMessage = await showsError('level 6 with a guard of 10,000 faces');
+    console.log(`  guard: "${guardMessage.split('\n')[0]}"`);
+    assert.match(guardMessage, /24576 faces, more than the limit of 10000/);
+    assert.equal((await dataset()).job, big.job, 'the level-6 result stays');
+    assert.equal((await dataset()).maxLevel, '5', 'the page knows the highest level that fits');
+    assert.match(await page.locator('#level-hint').textContent(), /up to level 5 fits/);
+    await setLevel(5);
+    await shows({ level: 5, ...cubeCatmullClark(5) }, 'cube level 5 under the guard');
+    assert.equal(await page.locator('#level').getAttribute('max'), '5', 'the slider stops at the guard');
+    // A new mesh starts at the highest level that fits: the torus at level 5 would make
+    // 288·4^5 faces; level 2 (4,608) is the highest under 10,000.
+    await page.selectOption('#shape', 'torus');
+    await shows({ shape: 'torus', level: 2, faces: 288 * 16 }, 'torus lowered to level 2');
+    assert.match(await page.locator('#message').textContent(), /showing level 2/);
+
+    // ---- responsiveness: a big job runs in the worker; a later change supersedes it
+    await page.selectOption('#guard', '4000000');
+    await page.selectOption('#shape', 'cube');
+    await setLevel(1);
+    const before = await shows({ shape: 'cube', level: 1, faces: 24 }, 'cube level 1 before the big job');
+    const race = await page.evaluate(async () => {
+      const data = document.documentElement.dataset;
+      const seen = [];
+      new MutationObserver(() => seen.push(data.faces)).observe(document.documentElement, { attributeFilter: ['data-faces'] });
+      const superseded = Number(data.superseded);
+      const slider = document.getElementById('level');
+      const maxLevel = Number(slider.max);
+      slider.value = String(maxLevel);
+      slider.dispatchEvent(new Event('input', { bubbles: true }));
+      // While the big job runs, the main thread must keep running timers on time.
+      let worstLateness = 0;
+      const started = performance.now();
+      let last = started;
+      while (performance.now() - started < 400) {
+        await new Promise((resolve) => setTimeout(resolve, 10));
+        const now = performance.now();
+        worstLateness = Math.max(worstLateness, now - last - 10);
+        last = now;
+      }
+      const stillBusy = window.subsurfDemo.runner.busy; // the worker has not answered yet
+      const busyShown = !document.getElementById('busy').hidden;
+      const busyText = document.getElementById('busy-text').textContent;
+      slider.value = '2';
+      slider.dispatchEvent(new Event('input', { bubbles: true }));
+      const changedAt = performance.now();
+      await new Promise((resolve) => {
+        const check = () => (data.level === '2' && !data.busy ? resolve() : setTimeout(check, 5));
+        check();
+      });
+      return {
+        maxLevel, stillBusy, busyShown, busyText, worstLateness, seen,
+        superseded: Number(data.superseded) - superseded, laterShownAfter: performance.now() - changedAt,
+      };
     });
-    const before = await showLevel(2);
+    console.log(`  big job (level ${race.maxLevel}): busy indicator "${race.busyText}", worst timer lateness ` +
+      `${race.worstLateness.toFixed(0)} ms; the later level-2 result was on screen ${race.laterShownAfter.toFixed(0)} ms after the change`);
+    assert.equal(race.maxLevel, 9, 'cube under a 4,000,000-face guard: level 9 (1,572,864 faces) is the highest');
+    assert.ok(race.stillBusy, 'the big job was still running 400 ms later (the test needs a job that long)');
+    assert.ok(race.busyShown, 'the busy indicator is shown while a long job runs');
+    assert.ok(race.worstLateness < 150, `the page stayed responsive (timers at most ${race.worstLateness.toFixed(0)} ms late)`);
+    assert.equal(race.superseded, 1, 'the big job was superseded');
+    assert.ok(!race.seen.includes(String(6 * 4 ** race.maxLevel)), 'the superseded result never reached the screen');
+    await shows({ level: 2, ...cubeCatmullClark(2) }, 'the later result wins');
+    assert.notEqual((await dataset()).job, before.job);
+
+    // ---- display options and the camera
+    await page.selectOption('#guard', '1000000');
+    await shows({ level: 2 }, 'guard back to a million');
+    await page.click('#frame');
+    await afterFrames();
+    const framed = await shot('framed');
+    await page.check('input[name=shading][value=flat]');
+    await afterFrames();
+    assert.notEqual((await shot('flat')).hash, framed.hash, 'flat shading looks different');
+    await page.check('input[name=shading][value=smooth]');
+    for (const toggle of ['#wireframe', '#cage']) {
+      await page.uncheck(toggle);
+      await afterFrames();
+      assert.notEqual((await shot(`no-${toggle.slice(1)}`)).hash, framed.hash, `${toggle} changes the picture`);
+      await page.check(toggle);
+    }
+    await afterFrames();
+    assert.equal((await shot('framed-again')).hash, framed.hash, 'the same settings give the same picture');
+
     const box = await canvas.boundingBox();
-    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    const centre = { x: box.x + box.width / 2, y: box.y + box.height / 2 };
+    // Orbit with the left button.
+    await page.mouse.move(centre.x, centre.y);
     await page.mouse.down();
-    await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 40, { steps: 8 });
+    await page.mouse.move(centre.x + 120, centre.y + 40, { steps: 8 });
     await page.mouse.up();
-    await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
-    const after = await analyze(page, await canvas.screenshot({ path: join(artifacts, 'demo-orbit.png') }));
-    assert.notEqual(after.hash, before.hash, 'dragging the mouse orbits the view');
-    assert.ok(after.mesh / after.total > 0.05, 'the mesh is still visible after orbiting');
-    await page.screenshot({ path: join(artifacts, 'demo-page.png') });
+    await afterFrames();
+    const orbited = await shot('orbit');
+    assert.notEqual(orbited.hash, framed.hash, 'dragging orbits the view');
+    assert.ok(orbited.mesh / orbited.total > 0.05, 'the mesh is still in view after orbiting');
+    // Zoom with the wheel.
+    await page.mouse.wheel(0, -400);
+    await afterFrames();
+    const zoomed = await shot('zoom');
+    assert.ok(zoomed.mesh > orbited.mesh, 'zooming in makes the mesh larger');
+    // Pan with the right button.
+    await page.mouse.move(centre.x, centre.y);
+    await page.mouse.down({ button: 'right' });
+    await page.mouse.move(centre.x - 150, centre.y, { steps: 6 });
+    await page.mouse.up({ button: 'right' });
+    await afterFrames();
+    assert.notEqual((await shot('pan')).hash, zoomed.hash, 'right-dragging pans the view');
+    // Touch: two fingers pinching in zoom out, one finger orbits.
+    const cdp = await context.newCDPSession(page);
+    const touch = (type, points) => cdp.send('Input.dispatchTouchEvent', { type, touchPoints: points.map(([x, y], id) => ({ x, y, id })) });
+    const beforeTouch = await shot('before-touch');
+    await touch('touchStart', [[centre.x - 150, centre.y], [centre.x + 150, centre.y]]);
+    for (let step = 1; step <= 5; step++) {
+      await touch('touchMove', [[centre.x - 150 + 20 * step, centre.y], [centre.x + 150 - 20 * step, centre.y]]);
+    }
+    await touch('touchEnd', []);
+    await afterFrames();
+    const pinched = await shot('pinch');
+    assert.ok(pinched.mesh < beforeTouch.mesh, 'pinching in zooms out');
+    await touch('touchStart', [[centre.x, centre.y]]);
+    for (let step = 1; step <= 5; step++) await touch('touchMove', [[centre.x + 25 * step, centre.y]]);
+    await touch('touchEnd', []);
+    await afterFrames();
+    assert.notEqual((await shot('touch-orbit')).hash, pinched.hash, 'a one-finger drag orbits');
+    // The frame button brings the mesh back to the framed view (same direction as after the orbit).
+    await page.click('#frame');
+    await afterFrames();
+    const reframed = await shot('reframed');
+    assert.ok(Math.abs(reframed.mesh / framed.mesh - 1) < 0.25, 'framing restores the mesh size on screen');
+
+    // ---- the page as a visitor first sees it, for the README
+    const fresh = await context.newPage();
+    fresh.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+    await fresh.goto(url);
+    await fresh.waitForFunction(() => window.subsurfReady === true, null, { timeout: 60_000 });
+    await fresh.screenshot({ path: join(artifacts, 'demo-page.png') });
+    if (process.env.UPDATE_SCREENSHOT) {
+      mkdirSync(join(root, 'docs'), { recursive: true });
+      copyFileSync(join(artifacts, 'demo-page.png'), join(root, 'docs', 'demo.png'));
+      console.log('  wrote docs/demo.png');
+    }
+    report.subdivideTimes = subdivideTimes;
   } finally {
     await browser.close();
-    server.close();
+    server?.close();
+  }
+  const times = report.subdivideTimes ?? [];
+  const largest = times.reduce((a, b) => (b.faces > (a?.faces ?? -1) ? b : a), null);
+  if (largest) {
+    console.log(`  subdivision times shown: ${times.length} results, median ${median(times.map((t) => t.ms)).toFixed(1)} ms; ` +
+      `largest ${largest.faces.toLocaleString('en-US')} faces in ${largest.ms.toFixed(1)} ms`);
   }
   for (const problem of problems) fail(problem);
+}
+
+function median(values) {
+  const sorted = [...values].sort((a, b) => a - b);
+  return sorted.length ? sorted[Math.floor(sorted.length / 2)] : NaN;
 }
 
 const started = Date.now();

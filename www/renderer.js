@@ -1,0 +1,251 @@
+// WebGL2 drawing of the demo: the refined surface (smooth or flat shading), its wireframe and
+// the control cage. Only drawing happens here; every position, normal and edge comes from
+// subsurf in the worker.
+//
+// Edges are drawn as line layers made of groups, each group an index buffer with its own
+// colour. Today the wireframe has one group ('edges'); sharp (creased) edges, once the library
+// takes crease tags, become a second group ('sharp') drawn in another colour, without any
+// change to the layer itself.
+
+const SURFACE_VS = `#version 300 es
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 viewProjection;
+out vec3 worldPosition;
+out vec3 smoothNormal;
+void main() {
+  worldPosition = position;
+  smoothNormal = normal;
+  gl_Position = viewProjection * vec4(position, 1.0);
+}`;
+
+// Smooth shading uses the vertex normals from subsurf; flat shading (and any vertex without a
+// normal) uses the triangle's own normal from screen-space derivatives.
+const SURFACE_FS = `#version 300 es
+precision highp float;
+in vec3 worldPosition;
+in vec3 smoothNormal;
+uniform vec3 eye;
+uniform vec3 light;
+uniform bool smoothShading;
+out vec4 color;
+void main() {
+  vec3 flatNormal = normalize(cross(dFdx(worldPosition), dFdy(worldPosition)));
+  vec3 normal = flatNormal;
+  if (smoothShading && dot(smoothNormal, smoothNormal) > 1e-12) {
+    normal = normalize(smoothNormal) * (gl_FrontFacing ? 1.0 : -1.0);
+  }
+  vec3 toEye = normalize(eye - worldPosition);
+  float key = max(dot(normal, light), 0.0);
+  float fill = 0.3 * max(dot(normal, toEye), 0.0);
+  float specular = pow(max(dot(normal, normalize(light + toEye)), 0.0), 48.0);
+  // The outside is warm, the inside (seen through holes and open boundaries) cool.
+  vec3 base = gl_FrontFacing ? vec3(0.88, 0.58, 0.3) : vec3(0.45, 0.55, 0.72);
+  color = vec4(base * (0.16 + 0.66 * key + fill) + 0.22 * specular, 1.0);
+}`;
+
+const LINE_VS = `#version 300 es
+layout(location = 0) in vec3 position;
+uniform mat4 viewProjection;
+uniform float pointSize;
+void main() {
+  gl_Position = viewProjection * vec4(position, 1.0);
+  gl_PointSize = pointSize;
+}`;
+
+const LINE_FS = `#version 300 es
+precision highp float;
+uniform vec4 tint;
+uniform bool roundPoints;
+out vec4 color;
+void main() {
+  if (roundPoints && length(gl_PointCoord - 0.5) > 0.5) discard;
+  color = tint;
+}`;
+
+export const COLORS = {
+  background: [0.11, 0.122, 0.141],
+  wireframe: [0.08, 0.06, 0.05, 0.5],
+  sharp: [0.95, 0.2, 0.55, 1], // creased edges, for when the page can show them
+  cage: [0.35, 0.78, 1, 0.95],
+  cageHidden: [0.35, 0.78, 1, 0.16],
+};
+
+function compile(gl, type, source) {
+  const shader = gl.createShader(type);
+  gl.shaderSource(shader, source);
+  gl.compileShader(shader);
+  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(shader));
+  return shader;
+}
+
+function program(gl, vertexSource, fragmentSource, uniforms) {
+  const p = gl.createProgram();
+  gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, vertexSource));
+  gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, fragmentSource));
+  gl.linkProgram(p);
+  if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(p));
+  return { program: p, ...Object.fromEntries(uniforms.map((name) => [name, gl.getUniformLocation(p, name)])) };
+}
+
+/** Positions, optional normals and index groups on one vertex array each. */
+class MeshBuffers {
+  constructor(gl) {
+    this.gl = gl;
+    this.positions = gl.createBuffer();
+    this.normals = gl.createBuffer();
+    this.vertexCount = 0;
+    this.groups = new Map(); // name → { vao, buffer, count }
+  }
+
+  setVertices(positions, normals) {
+    const { gl } = this;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+    gl.bufferData(gl.ARRAY_BUFFER, positions, gl.STATIC_DRAW);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.normals);
+    gl.bufferData(gl.ARRAY_BUFFER, normals ?? new Float32Array(positions.length), gl.STATIC_DRAW);
+    this.vertexCount = positions.length / 3;
+  }
+
+  /** Sets the index buffer of group `name` (triangles, edge pairs, ...); null removes it. */
+  setGroup(name, indices) {
+    const { gl } = this;
+    let group = this.groups.get(name);
+    if (!indices || indices.length === 0) {
+      if (group) group.count = 0;
+      return;
+    }
+    if (!group) {
+      const vao = gl.createVertexArray();
+      const buffer = gl.createBuffer();
+      gl.bindVertexArray(vao);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+      gl.enableVertexAttribArray(0);
+      gl.vertexAttribPointer(0, 3, gl.FLOAT, false, 0, 0);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.normals);
+      gl.enableVertexAttribArray(1);
+      gl.vertexAttribPointer(1, 3, gl.FLOAT, false, 0, 0);
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, buffer);
+      gl.bindVertexArray(null);
+      group = { vao, buffer, count: 0 };
+      this.groups.set(name, group);
+    }
+    gl.bindVertexArray(group.vao);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);
+    gl.bindVertexArray(null);
+    group.count = indices.length;
+  }
+
+  draw(name, mode) {
+    const group = this.groups.get(name);
+    if (!group || group.count === 0) return;
+    const { gl } = this;
+    gl.bindVertexArray(group.vao);
+    if (mode === gl.POINTS) gl.drawArrays(gl.POINTS, 0, this.vertexCount);
+    else gl.drawElements(mode, group.count, gl.UNSIGNED_INT, 0);
+    gl.bindVertexArray(null);
+  }
+}
+
+export class Renderer {
+  constructor(gl) {
+    this.gl = gl;
+    this.surface = program(gl, SURFACE_VS, SURFACE_FS, ['viewProjection', 'eye', 'light', 'smoothShading']);
+    this.lines = program(gl, LINE_VS, LINE_FS, ['viewProjection', 'tint', 'pointSize', 'roundPoints']);
+    this.refined = new MeshBuffers(gl);
+    this.cage = new MeshBuffers(gl);
+  }
+
+  /** The refined mesh: `triangles` for the surface, `edges` (and later `sharpEdges`) as lines. */
+  setRefined({ positions, normals, triangles, edges, sharpEdges = null }) {
+    this.refined.setVertices(positions, normals);
+    this.refined.setGroup('triangles', triangles);
+    this.refined.setGroup('edges', edges);
+    this.refined.setGroup('sharp', sharpEdges);
+  }
+
+  /** The control cage: its vertices as dots and its edges (and later its sharp edges) as lines. */
+  setCage({ positions, edges, sharpEdges = null }) {
+    this.cage.setVertices(positions, null);
+    this.cage.setGroup('edges', edges);
+    this.cage.setGroup('sharp', sharpEdges);
+  }
+
+  /**
+   * The wireframe colour, fading out as edges get closer on screen than a few pixels, where
+   * lines would only darken the surface. The spacing is estimated from the mesh's projected
+   * size and its number of edges.
+   */
+  wireframeColor(camera, heightPixels) {
+    const edges = (this.refined.groups.get('edges')?.count ?? 0) / 2;
+    const [r, g, b, a] = COLORS.wireframe;
+    if (edges === 0) return [r, g, b, 0];
+    const radiusPixels = camera.projectedRadius(heightPixels);
+    // About half the surface faces the viewer; a quad mesh has about two edges per face.
+    const facePixels = (Math.PI * radiusPixels * radiusPixels * 2) / Math.max(edges / 2, 1);
+    const spacing = Math.sqrt(facePixels);
+    const t = Math.min(1, Math.max(0, (spacing - 3) / 9));
+    return [r, g, b, a * t * t * (3 - 2 * t)];
+  }
+
+  draw(camera, { smooth = true, wireframe = true, cage = true } = {}) {
+    const { gl } = this;
+    const width = gl.drawingBufferWidth;
+    const height = gl.drawingBufferHeight;
+    gl.viewport(0, 0, width, height);
+    gl.clearColor(...COLORS.background, 1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    const { viewProjection, eye, light } = camera.view(width / Math.max(height, 1));
+
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LEQUAL);
+    gl.depthMask(true);
+    gl.disable(gl.BLEND);
+    gl.disable(gl.CULL_FACE); // open meshes show their inside
+    // Pushes the surface back a little so that its own edges, drawn on it, win the depth test.
+    gl.enable(gl.POLYGON_OFFSET_FILL);
+    gl.polygonOffset(1, 2);
+    const s = this.surface;
+    gl.useProgram(s.program);
+    gl.uniformMatrix4fv(s.viewProjection, false, viewProjection);
+    gl.uniform3fv(s.eye, eye);
+    gl.uniform3fv(s.light, light);
+    gl.uniform1i(s.smoothShading, smooth ? 1 : 0);
+    this.refined.draw('triangles', gl.TRIANGLES);
+    gl.disable(gl.POLYGON_OFFSET_FILL);
+
+    const l = this.lines;
+    gl.useProgram(l.program);
+    gl.uniformMatrix4fv(l.viewProjection, false, viewProjection);
+    gl.uniform1i(l.roundPoints, 0);
+    gl.uniform1f(l.pointSize, 1);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
+    gl.depthMask(false);
+    if (wireframe) {
+      gl.uniform4fv(l.tint, this.wireframeColor(camera, height));
+      this.refined.draw('edges', gl.LINES);
+      gl.uniform4fv(l.tint, COLORS.sharp);
+      this.refined.draw('sharp', gl.LINES);
+    }
+    if (cage) {
+      // The cage in front of the surface solid, behind it faint: it usually encloses the surface.
+      for (const [depthFunc, color] of [[gl.GREATER, COLORS.cageHidden], [gl.LEQUAL, COLORS.cage]]) {
+        gl.depthFunc(depthFunc);
+        gl.uniform4fv(l.tint, color);
+        gl.uniform1f(l.pointSize, 1);
+        gl.uniform1i(l.roundPoints, 0);
+        this.cage.draw('edges', gl.LINES);
+        gl.uniform4fv(l.tint, depthFunc === gl.LEQUAL ? COLORS.sharp : color);
+        this.cage.draw('sharp', gl.LINES);
+        gl.uniform4fv(l.tint, color);
+        gl.uniform1f(l.pointSize, 6 * Math.min(devicePixelRatio, 2));
+        gl.uniform1i(l.roundPoints, 1);
+        this.cage.draw('edges', gl.POINTS);
+      }
+    }
+    gl.depthFunc(gl.LEQUAL);
+    gl.depthMask(true);
+    gl.disable(gl.BLEND);
+  }
+}

@@ -1,0 +1,123 @@
+// The demo's worker: every call into subsurf that can take time runs here, so the page never
+// freezes. The page compiles the WebAssembly module once and posts it to each worker it starts
+// (instantiating a compiled module takes milliseconds), and terminates a worker whose job has
+// been superseded: terminating is the only way to stop a running wasm call.
+//
+// Messages in:
+//   { type: 'init', module }                      → { type: 'ready', version, schemes, boundaries, shapes }
+//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces }
+//       input: { kind: 'shape', name } | { kind: 'obj', name, text } | { kind: 'mesh', mesh }
+//       schemes: one scheme name per level for every level the page could ask for (the page's
+//       per-level choices, then its main scheme); the job uses the first `level` of them.
+//     → { type: 'plan', id, level, maxLevel, predicted, mesh? }   (mesh: the input, when not sent in)
+//     → { type: 'result', id, level, result, normals, edges, cageEdges, timings }
+//     or { type: 'error', id, stage: 'read' | 'predict' | 'subdivide', message, fatal }
+//   { type: 'writeObj', id, mesh }                → { type: 'obj', id, blob } or an error
+import {
+  initSync, subdivide, readObj, writeObj, shape, shapeNames, schemeNames, boundaryRules,
+  predictCounts, vertexNormals, edgeList, version,
+} from './pkg/subsurf.js';
+
+let ready = false;
+const waiting = [];
+
+self.onmessage = ({ data }) => {
+  if (data.type === 'init') {
+    initSync({ module: data.module });
+    warmUp();
+    ready = true;
+    self.postMessage({
+      type: 'ready', version: version(), schemes: schemeNames(), boundaries: boundaryRules(), shapes: shapeNames(),
+    });
+    waiting.splice(0).forEach(handle);
+  } else if (ready) {
+    handle(data);
+  } else {
+    waiting.push(data);
+  }
+};
+
+// The engine compiles wasm functions on their first call; a tiny job here keeps that out of the
+// time the page shows for the first real one.
+function warmUp() {
+  try {
+    for (const [name, scheme] of [['cube', 'catmull-clark'], ['icosahedron', 'loop']]) {
+      const mesh = shape(name);
+      predictCounts(mesh, { scheme, levels: 1 });
+      const out = subdivide(mesh, { scheme, levels: 1 });
+      vertexNormals(out);
+      edgeList(out);
+    }
+  } catch {
+    // Only a warm-up: a real failure shows up in the real job.
+  }
+}
+
+function handle(message) {
+  if (message.type === 'job') runJob(message);
+  else if (message.type === 'writeObj') exportObj(message);
+}
+
+// A stage of a job: runs `work`; on a thrown error posts it and returns undefined. A
+// RuntimeError is a trap inside wasm (a bug, or memory exhausted): this instance is then
+// unusable, so the page replaces the worker (`fatal`).
+function stage(id, name, work) {
+  try {
+    return { value: work() };
+  } catch (error) {
+    const fatal = error instanceof WebAssembly.RuntimeError || error instanceof RangeError;
+    self.postMessage({ type: 'error', id, stage: name, message: String(error?.message ?? error), fatal });
+    return undefined;
+  }
+}
+
+function inputMesh({ input }) {
+  switch (input.kind) {
+    case 'shape': return shape(input.name);
+    case 'obj': return readObj(input.text);
+    case 'mesh': return input.mesh;
+    default: throw new Error(`unknown input kind ${input.kind}`);
+  }
+}
+
+function runJob(job) {
+  const { id } = job;
+  const read = stage(id, 'read', () => inputMesh(job));
+  if (!read) return;
+  const mesh = read.value;
+
+  // The same counts formulas as subdivide's maxFaces guard, so maxLevel is exactly the highest
+  // level the library accepts.
+  const planned = stage(id, 'predict', () => predictCounts(mesh, { scheme: job.schemes, boundary: job.boundary }));
+  if (!planned) return;
+  const predicted = planned.value;
+  let maxLevel = 0;
+  while (maxLevel + 1 < predicted.faces.length && predicted.faces[maxLevel + 1] <= job.maxFaces) maxLevel++;
+  const level = job.clampLevel ? Math.min(job.level, maxLevel) : job.level;
+  const plan = { type: 'plan', id, level, maxLevel, predicted: { vertices: [...predicted.vertices], faces: [...predicted.faces] } };
+  if (job.input.kind !== 'mesh') plan.mesh = mesh; // copied: this worker still needs it
+  self.postMessage(plan);
+
+  const options = { scheme: job.schemes.slice(0, level), levels: level, boundary: job.boundary, maxFaces: job.maxFaces };
+  const started = performance.now();
+  const refined = stage(id, 'subdivide', () => subdivide(mesh, options));
+  if (!refined) return;
+  const subdivided = performance.now();
+  const result = refined.value;
+  const display = stage(id, 'subdivide', () => ({
+    normals: vertexNormals(result),
+    edges: edgeList(result),
+    cageEdges: edgeList(mesh),
+  }));
+  if (!display) return;
+  const { normals, edges, cageEdges } = display.value;
+  const timings = { subdivide: subdivided - started, display: performance.now() - subdivided };
+  const transfer = [result.positions, result.indices, result.faceSizes, result.triangles, normals, edges, cageEdges]
+    .map((array) => array.buffer);
+  self.postMessage({ type: 'result', id, level, result, normals, edges, cageEdges, timings }, transfer);
+}
+
+function exportObj({ id, mesh }) {
+  const written = stage(id, 'write', () => writeObj(mesh));
+  if (written) self.postMessage({ type: 'obj', id, blob: new Blob([written.value], { type: 'model/obj' }) });
+}
