@@ -1,0 +1,36 @@
+//! The OBJ reader on arbitrary text: it returns a valid mesh or an error naming a line of the
+//! file; an accepted mesh builds, writes and reads back unchanged, and subdivides.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use subsurf::io::{read_obj, write_obj};
+use subsurf::{subdivide, Error, HalfEdgeMesh, Options, Scheme};
+use subsurf_fuzz::{check_connectivity, check_error, check_poly, MAX_ELEMENTS, MAX_FACES};
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    match read_obj(text) {
+        Ok(mesh) => {
+            check_poly(&mesh, "read_obj");
+            let again = read_obj(&write_obj(&mesh)).expect("write_obj's output reads back");
+            assert_eq!(again, mesh, "write_obj → read_obj round trip");
+            if mesh.num_faces() <= MAX_ELEMENTS && mesh.num_vertices() <= 4 * MAX_ELEMENTS {
+                check_connectivity(&HalfEdgeMesh::from_poly(&mesh).unwrap());
+                let options =
+                    Options { max_faces: MAX_FACES, ..Options::new(Scheme::CatmullClark, 1) };
+                match subdivide(&mesh, &options) {
+                    Ok(out) => check_poly(&out, "catmull-clark of an OBJ mesh"),
+                    Err(e) => {
+                        assert!(matches!(e, Error::TooLarge(_)), "catmull-clark refused: {e}")
+                    }
+                }
+            }
+        }
+        Err(Error::Obj { line, message }) => {
+            let lines = text.lines().count().max(1);
+            assert!((1..=lines).contains(&line), "line {line} of a {lines}-line file: {message}");
+            check_error(&Error::Obj { line, message }, "read_obj");
+        }
+        Err(other) => panic!("read_obj returned a non-OBJ error: {other:?}"),
+    }
+});

@@ -1,0 +1,93 @@
+//! Checks shared by the fuzz targets: what every accepted mesh, every result and every error
+//! must satisfy. A failed check panics, which libFuzzer reports as a crash.
+
+use subsurf::{Error, HalfEdgeMesh, PolyMesh};
+
+/// The most vertices, faces and indices a fuzzed mesh gets, so that one execution stays fast.
+pub const MAX_ELEMENTS: usize = 64;
+
+/// The memory guard the targets use: a few thousand faces at most per execution.
+pub const MAX_FACES: u64 = 4096;
+
+/// An independent statement of what `HalfEdgeMesh::from_faces` accepts.
+pub fn is_valid(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> bool {
+    if positions.is_empty() || positions.len() % 3 != 0 {
+        return false;
+    }
+    if positions.iter().any(|x| !x.is_finite()) {
+        return false;
+    }
+    let vertices = positions.len() / 3;
+    if face_sizes.iter().map(|&n| n as u64).sum::<u64>() != indices.len() as u64 {
+        return false;
+    }
+    let mut start = 0;
+    for &n in face_sizes {
+        let face = &indices[start..start + n as usize];
+        if n < 3 || face.iter().any(|&i| i as usize >= vertices) {
+            return false;
+        }
+        for (k, v) in face.iter().enumerate() {
+            if face[..k].contains(v) {
+                return false;
+            }
+        }
+        start += n as usize;
+    }
+    true
+}
+
+/// A well-formed polygon mesh: what every result and every accepted OBJ file must be.
+pub fn check_poly(mesh: &PolyMesh, what: &str) {
+    assert!(
+        is_valid(&mesh.positions, &mesh.indices, &mesh.face_sizes),
+        "{what}: not a valid mesh: {} positions, {} indices, sizes {:?}",
+        mesh.positions.len(),
+        mesh.indices.len(),
+        mesh.face_sizes
+    );
+    HalfEdgeMesh::from_poly(mesh).unwrap_or_else(|e| panic!("{what}: from_poly refused it: {e}"));
+}
+
+/// An error must say something, and never in the words of a panic.
+pub fn check_error(error: &Error, what: &str) {
+    let message = error.to_string();
+    assert!(message.len() > 16, "{what}: message too short: {message:?}");
+    assert!(!message.contains("panicked"), "{what}: {message}");
+}
+
+/// The connectivity the half-edge mesh promises, through its public query API.
+pub fn check_connectivity(mesh: &HalfEdgeMesh) {
+    for h in mesh.half_edge_indices() {
+        let he = mesh.half_edge(h).unwrap();
+        assert_eq!(he.next_in_cell().prev_in_cell().index(), h);
+        assert_eq!(he.next_in_cell().from_vertex_index(), he.to_vertex_index());
+        assert_eq!(he.next_in_cell().cell_index(), he.cell_index());
+        // The half-edges around an edge form a cycle through h, all on the same vertex pair.
+        let pair = |x: &subsurf::mesh::HalfEdgeRef| {
+            let (a, b) = (x.from_vertex_index(), x.to_vertex_index());
+            (a.min(b), a.max(b))
+        };
+        let mut around = he.next_around_edge();
+        let mut steps = 1;
+        while around.index() != h {
+            assert_eq!(pair(&around), pair(&he), "half-edge {h}: edge cycle leaves its edge");
+            assert_eq!(around.edge_index(), he.edge_index());
+            around = around.next_around_edge();
+            steps += 1;
+            assert!(steps <= mesh.num_half_edges(), "half-edge {h}: edge cycle does not close");
+        }
+        assert_eq!(he.is_boundary(), steps == 1);
+    }
+    for v in mesh.vertex_indices() {
+        let vertex = mesh.vertex(v).unwrap();
+        let n = vertex.num_half_edges_from();
+        assert_eq!(vertex.half_edges_from().count(), n);
+        assert!(vertex.half_edges_from().all(|h| h.from_vertex_index() == v));
+        if vertex.half_edges_from().any(|h| h.is_boundary()) {
+            assert!(vertex.kth_half_edge_from(0).unwrap().is_boundary(), "vertex {v}: k = 0");
+        }
+        assert!(vertex.kth_half_edge_from(n).is_none());
+    }
+    let _ = mesh.first_non_manifold();
+}
