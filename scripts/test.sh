@@ -5,7 +5,9 @@
 #
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, and the demo page end-to-end test (when tests/e2e/demo.mjs exists).
+# the built package, native vs wasm agreement on seeded random meshes (the fixture comes from
+# the native tests), the demo page end-to-end test (when tests/e2e/demo.mjs exists), and a short
+# fuzz run of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -85,6 +87,8 @@ check_wasm_counts() {
 run setup scripts/setup.sh || { echo "setup failed; nothing else can run" >&2; exit 1; }
 run fmt cargo fmt --check
 run clippy cargo clippy --all-targets -- -D warnings
+# Written by the native test native_vs_wasm_fixture; removed first so a stale one never passes.
+rm -f artifacts/native-vs-wasm.json
 run native-tests cargo test --release
 if run wasm-tests cargo test --target wasm32-unknown-unknown; then
   run wasm-counts check_wasm_counts
@@ -93,6 +97,7 @@ else
 fi
 if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
+  run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
   else
@@ -100,7 +105,9 @@ if run build-pkg scripts/build-pkg.sh; then
   fi
 else
   skip pkg-smoke "package build failed"
+  skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
 fi
+run fuzz scripts/fuzz.sh 20
 
 exit "$FAILED"
