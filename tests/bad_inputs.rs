@@ -6,6 +6,9 @@
 //! `every_catalogue_case_has_tests` keeps that list and the catalogue in step. Cases the library
 //! does not handle yet are `#[ignore = "needs library change: ..."]`.
 
+// Native only: the CLI runs as a process; the JS API runs the catalogue in wasm_bad_inputs.rs.
+#![cfg(not(target_arch = "wasm32"))]
+
 #[path = "common/bad_inputs.rs"]
 mod catalogue;
 

@@ -6,6 +6,9 @@
 //! to `artifacts/native-vs-wasm.json`; `tests/js/native_vs_wasm.mjs` runs the built npm package on
 //! the same inputs and compares (scripts/test.sh runs both, in that order).
 
+// Native only: proptest is a native dev-dependency, and the wasm runner does not run #[test]s.
+#![cfg(not(target_arch = "wasm32"))]
+
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
