@@ -1,11 +1,14 @@
 //! Every scheme on the benchmark meshes, as a table: median of 5 runs of the whole `subdivide`
 //! call (build + refine) and of refinement alone, in ms and million output faces per second.
-//! Run with `cargo bench --bench table`. Figures, not assertions: speed targets live here.
+//! Run with `cargo bench --bench table` (`SUBSURF_BENCH_SCHEMES=catmull-clark,loop` for some
+//! schemes only). Figures, not assertions: speed targets live here. The Catmull-Clark and Loop
+//! rows end with the same meshes fully creased (every edge sharpness 2.5): the tagged path,
+//! whose target is at most 1.5× the untagged time.
 
 use std::time::{Duration, Instant};
-use subsurf::scheme::subdivide_mesh;
+use subsurf::scheme::subdivide_mesh_with_tags;
 use subsurf::shapes::{torus, torus_triangles};
-use subsurf::{subdivide, HalfEdgeMesh, Options, PolyMesh, Scheme};
+use subsurf::{subdivide_with_tags, Crease, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 fn median(mut f: impl FnMut() -> Duration) -> Duration {
     let mut times: Vec<Duration> = (0..5).map(|_| f()).collect();
@@ -13,36 +16,69 @@ fn median(mut f: impl FnMut() -> Duration) -> Duration {
     times[2]
 }
 
+/// Every edge of `mesh` as a crease of sharpness `sharpness`.
+fn all_edges_creased(mesh: &PolyMesh, sharpness: f32) -> Tags {
+    let mut creases = Vec::with_capacity(mesh.indices.len() / 2);
+    let mut start = 0usize;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        for (k, &a) in face.iter().enumerate() {
+            let b = face[(k + 1) % face.len()];
+            if a < b {
+                creases.push(Crease { vertices: [a, b], sharpness });
+            }
+        }
+        start += n as usize;
+    }
+    Tags { creases, ..Tags::default() }
+}
+
 fn main() {
+    let only: Vec<Scheme> = std::env::var("SUBSURF_BENCH_SCHEMES")
+        .ok()
+        .map(|list| Scheme::parse_list(&list).expect("SUBSURF_BENCH_SCHEMES: scheme names"))
+        .unwrap_or_default();
     // Same meshes as tools/osd/far_perf.sh (torus R = 1, r = 0.25).
     let quads = torus(1000, 1000, 1.0, 0.25);
     let tris = torus_triangles(250, 200, 1.0, 0.25);
-    let cases: Vec<(&str, &PolyMesh, u32)> = vec![
-        ("torus 1M quads", &quads, 1),
-        ("torus 100k tris", &tris, 1),
-        ("torus 100k tris", &tris, 2),
-        ("torus 100k tris", &tris, 3),
+    let (none, quads_creased, tris_creased) =
+        (Tags::default(), all_edges_creased(&quads, 2.5), all_edges_creased(&tris, 2.5));
+    let cases: Vec<(&str, &PolyMesh, u32, &Tags)> = vec![
+        ("torus 1M quads", &quads, 1, &none),
+        ("torus 100k tris", &tris, 1, &none),
+        ("torus 100k tris", &tris, 2, &none),
+        ("torus 100k tris", &tris, 3, &none),
+        ("torus 1M quads, creased 2.5", &quads, 1, &quads_creased),
+        ("torus 100k tris, creased 2.5", &tris, 3, &tris_creased),
     ];
     println!("| scheme | mesh | level | faces out | total ms | refine ms | M faces/s total | M faces/s refine |");
     println!("|---|---|---|---|---|---|---|---|");
     for &scheme in Scheme::ALL {
-        for &(name, mesh, levels) in &cases {
+        if !only.is_empty() && !only.contains(&scheme) {
+            continue;
+        }
+        for &(name, mesh, levels, tags) in &cases {
             let triangles = mesh.face_sizes.iter().all(|&n| n == 3);
             if scheme.triangles_only() && !triangles {
+                continue;
+            }
+            let creased = !tags.is_trivial();
+            if creased && !matches!(scheme, Scheme::CatmullClark | Scheme::Loop) {
                 continue;
             }
             let options = Options::new(scheme, levels);
             let mut faces = 0;
             let total = median(|| {
                 let t = Instant::now();
-                faces = subdivide(mesh, &options).map(|m| m.num_faces()).unwrap_or(0);
+                faces =
+                    subdivide_with_tags(mesh, &options, tags).map(|m| m.num_faces()).unwrap_or(0);
                 t.elapsed()
             });
             let base = HalfEdgeMesh::from_poly(mesh).expect("benchmark meshes are valid");
             let refine = median(|| {
                 let m = base.clone();
                 let t = Instant::now();
-                let out = subdivide_mesh(m, &options);
+                let out = subdivide_mesh_with_tags(m, &options, tags);
                 let elapsed = t.elapsed();
                 drop(out);
                 elapsed

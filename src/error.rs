@@ -12,6 +12,9 @@ pub enum Error {
     Obj { line: usize, message: String },
     /// An option has a value the library does not know.
     InvalidOption(String),
+    /// A crease, corner or hole tag names something the mesh does not have, or a sharpness is
+    /// negative or NaN. The message names the tag.
+    InvalidTag(String),
     /// The mesh is valid but the chosen scheme is not defined on it.
     Unsupported(String),
     /// The predicted output exceeds the configured memory guard.
@@ -32,6 +35,7 @@ impl fmt::Display for Error {
             Error::InvalidMesh(m) => write!(f, "invalid mesh: {m}"),
             Error::Obj { line, message } => write!(f, "OBJ line {line}: {message}"),
             Error::InvalidOption(m) => write!(f, "invalid option: {m}"),
+            Error::InvalidTag(m) => write!(f, "invalid tag: {m}"),
             Error::Unsupported(m) => write!(f, "unsupported input: {m}"),
             Error::TooLarge(m) => write!(f, "output too large: {m}"),
             Error::Io(m) => write!(f, "{m}"),

@@ -25,10 +25,12 @@ pub mod refine;
 pub mod rules;
 pub mod scheme;
 pub mod shapes;
+pub mod tags;
 
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;
 
 pub use error::{Error, Result};
 pub use mesh::{HalfEdgeMesh, PolyMesh};
-pub use scheme::{subdivide, Boundary, Options, Scheme};
+pub use scheme::{subdivide, subdivide_with_tags, Boundary, Options, Scheme};
+pub use tags::{Corner, Crease, CreaseMethod, Tags};

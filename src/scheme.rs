@@ -6,8 +6,10 @@ use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{pqq, ptq, quad_tri, sqrt3};
 use crate::rules::Sqrt3;
 use crate::rules::{
-    Bilinear, CatmullClark, DooSabin, Loop, Midpoint, QuadSplitRules, QuadTriangle, TriSplitRules,
+    Bilinear, CatmullClark, CreasedCatmullClark, CreasedLoop, DooSabin, LevelTags, Loop, Midpoint,
+    QuadSplitRules, QuadTriangle, TriSplitRules,
 };
+use crate::tags::Tags;
 use serde::Deserialize;
 use std::fmt;
 use std::str::FromStr;
@@ -58,6 +60,12 @@ impl Scheme {
         }
     }
 
+    /// True for the schemes that follow [`Tags`] (creases, corners, holes): Catmull-Clark and
+    /// Loop use them, bilinear and midpoint carry them to the next level of a list.
+    pub fn supports_tags(self) -> bool {
+        matches!(self, Scheme::CatmullClark | Scheme::Loop | Scheme::Bilinear | Scheme::Midpoint)
+    }
+
     /// True for the schemes defined on triangles only.
     pub fn triangles_only(self) -> bool {
         matches!(self, Scheme::Loop | Scheme::Midpoint | Scheme::Sqrt3)
@@ -84,8 +92,12 @@ pub enum Boundary {
     Fixed,
     /// A boundary vertex moves to the mean of itself and its boundary edges' midpoints (seed 003).
     Average,
-    /// No boundary interpolation: Doo-Sabin leaves out the faces of boundary edges and vertices,
-    /// so the surface retracts from the boundary, as CGAL's Doo-Sabin does. Doo-Sabin only.
+    /// No boundary interpolation. Catmull-Clark and Loop do as OpenSubdiv's `VTX_BOUNDARY_NONE`
+    /// (OBJ `interpolateboundary 0`): the faces that touch a boundary vertex become holes, so
+    /// they and their descendants are left out of the result (their vertices stay, placed as
+    /// under `EdgeOnly`). Doo-Sabin leaves out the faces of boundary edges and vertices, so the
+    /// surface retracts from the boundary, as CGAL's Doo-Sabin does. Bilinear and midpoint ignore
+    /// it; Quad/Triangle and √3 refuse it.
     None,
 }
 
@@ -227,8 +239,15 @@ fn sqrt3_refines_boundary(schemes: &[Scheme], level: usize) -> bool {
 
 /// Subdivides `mesh` as `options` says. The input is only read.
 pub fn subdivide(mesh: &PolyMesh, options: &Options) -> Result<PolyMesh> {
+    subdivide_with_tags(mesh, options, &Tags::default())
+}
+
+/// Subdivides `mesh` with creases, corners and holes (see [`Tags`]): Catmull-Clark and Loop use
+/// them as OpenSubdiv 3 does, bilinear and midpoint carry them to the next level, and Doo-Sabin,
+/// Quad/Triangle and √3 refuse non-trivial tags. Invalid tags are an [`Error::InvalidTag`].
+pub fn subdivide_with_tags(mesh: &PolyMesh, options: &Options, tags: &Tags) -> Result<PolyMesh> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    subdivide_mesh(base, options)
+    subdivide_mesh_with_tags(base, options, tags)
 }
 
 /// Refuses a scheme on a mesh it is not defined on, naming the first offending face.
@@ -251,9 +270,9 @@ fn check_scheme(
             )));
         }
     }
-    if boundary == Boundary::None && scheme != Scheme::DooSabin {
+    if boundary == Boundary::None && matches!(scheme, Scheme::QuadTriangle | Scheme::Sqrt3) {
         return Err(at(format!(
-            "boundary 'none' is only defined for doo-sabin; use 'edge-and-corner', 'edge-only', 'fixed' or 'average' with {scheme}"
+            "boundary 'none' is defined for catmull-clark, loop and doo-sabin; use 'edge-and-corner', 'edge-only', 'fixed' or 'average' with {scheme}"
         )));
     }
     if matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
@@ -265,8 +284,29 @@ fn check_scheme(
     Ok(())
 }
 
+fn tags_unsupported(scheme: Scheme, level: usize) -> Error {
+    Error::Unsupported(format!(
+        "level {}: {scheme} does not support creases/corners/holes; remove them or use catmull-clark or loop",
+        level + 1
+    ))
+}
+
 /// Subdivides an already built half-edge mesh.
 pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh> {
+    subdivide_mesh_with_tags(base, options, &Tags::default())
+}
+
+/// Subdivides an already built half-edge mesh with tags; see [`subdivide_with_tags`].
+///
+/// Without tags, on a mesh without non-manifold edges and with a boundary other than `none`,
+/// every level takes the plain path (no sharpness data at all). Otherwise the levels that
+/// follow tags carry one sharpness per edge and vertex and a hole flag per face from level to
+/// level (see [`crate::rules::crease`]).
+pub fn subdivide_mesh_with_tags(
+    base: HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<PolyMesh> {
     let (_, faces) = predict_counts(&base, options);
     if faces > options.max_faces {
         return Err(Error::TooLarge(format!(
@@ -275,33 +315,104 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
             options.max_faces
         )));
     }
+    tags.validate(base.num_vertices(), base.num_cells())?;
+    let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
+    let user_tags = !tags.is_trivial();
+    if user_tags {
+        if let Some((level, &scheme)) =
+            options.schemes.iter().enumerate().find(|(_, s)| !s.supports_tags())
+        {
+            return Err(tags_unsupported(scheme, level));
+        }
+    }
+    let boundary = options.boundary;
     let mut mesh = base;
+    if options.schemes.is_empty() {
+        if tags.holes.is_empty() {
+            return Ok(mesh.to_poly());
+        }
+        let level_tags = LevelTags::base_with_edges(&mesh, tags, &crease_edges, false);
+        let mut poly = mesh.to_poly();
+        let sizes = std::mem::take(&mut poly.face_sizes);
+        let indices = std::mem::take(&mut poly.indices);
+        let (mut start, mut kept) = (0usize, Vec::with_capacity(indices.len()));
+        for (f, &n) in sizes.iter().enumerate() {
+            if !level_tags.is_hole(f as u32) {
+                kept.extend_from_slice(&indices[start..start + n as usize]);
+                poly.face_sizes.push(n);
+            }
+            start += n as usize;
+        }
+        poly.indices = kept;
+        return Ok(poly);
+    }
+    let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
     for (level, &scheme) in options.schemes.iter().enumerate() {
-        check_scheme(&mesh, scheme, options.boundary, level)?;
+        check_scheme(&mesh, scheme, boundary, level)?;
         let last = level + 1 == levels;
-        let boundary = options.boundary;
-        let child = match scheme {
-            Scheme::CatmullClark => quad_split(mesh, &CatmullClark { boundary }, last),
-            Scheme::Bilinear => quad_split(mesh, &Bilinear, last),
-            Scheme::Loop => tri_split(&mesh, &Loop { boundary }),
-            Scheme::Midpoint => tri_split(&mesh, &Midpoint),
-            Scheme::QuadTriangle => {
-                Level::Poly(quad_tri::refine(&mesh, &QuadTriangle { boundary }))
+        let creased = matches!(scheme, Scheme::CatmullClark | Scheme::Loop);
+        if level_tags.is_none() && scheme.supports_tags() {
+            // The tagged path: for the user's tags (base level), and for what only the crease
+            // rules handle: boundary 'none', non-manifold edges, smooth triangles.
+            let needed = (level == 0 && user_tags)
+                || (creased
+                    && (boundary == Boundary::None
+                        || mesh.non_manifold_edges
+                        || (tags.smooth_triangles && scheme == Scheme::CatmullClark)));
+            if needed {
+                // The user's creases, corners and holes belong to the base mesh; a later level
+                // (after a scheme that does not carry tags) starts from the options only.
+                let options_only = Tags {
+                    crease_method: tags.crease_method,
+                    smooth_triangles: tags.smooth_triangles,
+                    ..Tags::default()
+                };
+                let (level_input, edges) =
+                    if level == 0 { (tags, &crease_edges[..]) } else { (&options_only, &[][..]) };
+                let holes_at_boundary = boundary == Boundary::None && creased;
+                level_tags =
+                    Some(LevelTags::base_with_edges(&mesh, level_input, edges, holes_at_boundary));
             }
-            Scheme::DooSabin => {
+        }
+        if !scheme.supports_tags() {
+            if level_tags.as_ref().is_some_and(|t| t.has_holes()) {
+                return Err(tags_unsupported(scheme, level));
+            }
+            level_tags = None;
+        }
+        let (child, next_tags) = match (scheme, &level_tags) {
+            (Scheme::CatmullClark, Some(t)) => {
+                quad_split_tagged(mesh, &CreasedCatmullClark { boundary, tags: t }, t, last)
+            }
+            (Scheme::CatmullClark, None) => {
+                (quad_split(mesh, &CatmullClark { boundary }, last), None)
+            }
+            (Scheme::Bilinear, Some(t)) => quad_split_tagged(mesh, &Bilinear, t, last),
+            (Scheme::Bilinear, None) => (quad_split(mesh, &Bilinear, last), None),
+            (Scheme::Loop, Some(t)) => {
+                tri_split_tagged(&mesh, &CreasedLoop { boundary, tags: t }, t, last)
+            }
+            (Scheme::Loop, None) => (tri_split(&mesh, &Loop { boundary }, last), None),
+            (Scheme::Midpoint, Some(t)) => tri_split_tagged(&mesh, &Midpoint, t, last),
+            (Scheme::Midpoint, None) => (tri_split(&mesh, &Midpoint, last), None),
+            (Scheme::QuadTriangle, _) => {
+                (Level::Poly(quad_tri::refine(&mesh, &QuadTriangle { boundary })), None)
+            }
+            (Scheme::DooSabin, _) => {
                 let mode = if boundary == Boundary::None {
                     DualBoundary::Retract
                 } else {
                     DualBoundary::Chaikin
                 };
-                Level::Poly(dqq::refine(&mesh, &DooSabin, mode))
+                (Level::Poly(dqq::refine(&mesh, &DooSabin, mode)), None)
             }
-            Scheme::Sqrt3 => {
+            (Scheme::Sqrt3, _) => {
                 let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
-                Level::Poly(sqrt3::refine(&mesh, &Sqrt3 { boundary }, refine_boundary))
+                (Level::Poly(sqrt3::refine(&mesh, &Sqrt3 { boundary }, refine_boundary)), None)
             }
         };
+        level_tags = next_tags;
         mesh = match child {
             Level::Poly(poly) if last => return Ok(poly),
             Level::Poly(poly) => HalfEdgeMesh::from_poly(&poly)?,
@@ -333,10 +444,85 @@ fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> L
     Level::Mesh(pqq::child_mesh(&mesh, positions))
 }
 
-fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Level {
-    let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
-    ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
-    let indices = ptq::child_face_indices(mesh);
-    let face_sizes = vec![3; indices.len() / 3];
-    Level::Poly(PolyMesh { positions, indices, face_sizes })
+/// [`quad_split`] with tags: the last level leaves out the children of holes; other levels
+/// return the child level's tags too.
+fn quad_split_tagged<R: QuadSplitRules>(
+    mesh: HalfEdgeMesh,
+    rules: &R,
+    tags: &LevelTags,
+    last: bool,
+) -> (Level, Option<LevelTags>) {
+    let count = pqq::num_child_vertices(&mesh);
+    if last {
+        let mut positions = vec![0.0f32; 3 * count];
+        pqq::refine_points(&mesh, rules, positions.as_chunks_mut::<3>().0);
+        let indices = pqq::child_face_indices(&mesh);
+        // Child cell h comes from parent half-edge h's cell.
+        let hole = |f: usize| tags.is_hole(mesh.he_cell[f]);
+        return (Level::Poly(without_holes(positions, indices, 4, tags.has_holes(), hole)), None);
+    }
+    let mut positions = vec![[0.0f32; 3]; count];
+    pqq::refine_points(&mesh, rules, &mut positions);
+    let child = pqq::child_mesh(&mesh, positions);
+    let child_tags = pqq::child_tags(&mesh, &child, tags);
+    (Level::Mesh(child), Some(child_tags))
+}
+
+fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R, last: bool) -> Level {
+    if last {
+        let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
+        ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
+        let indices = ptq::child_face_indices(mesh);
+        let face_sizes = vec![3; indices.len() / 3];
+        return Level::Poly(PolyMesh { positions, indices, face_sizes });
+    }
+    let mut positions = vec![[0.0f32; 3]; ptq::num_child_vertices(mesh)];
+    ptq::refine_points(mesh, rules, &mut positions);
+    Level::Mesh(ptq::child_mesh(mesh, positions))
+}
+
+/// [`tri_split`] with tags: the last level leaves out the children of holes; other levels
+/// return the child level's tags too.
+fn tri_split_tagged<R: TriSplitRules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    tags: &LevelTags,
+    last: bool,
+) -> (Level, Option<LevelTags>) {
+    if last {
+        let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
+        ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
+        let indices = ptq::child_face_indices(mesh);
+        // Child triangle f comes from parent triangle f / 4.
+        let hole = |f: usize| tags.is_hole((f / 4) as u32);
+        return (Level::Poly(without_holes(positions, indices, 3, tags.has_holes(), hole)), None);
+    }
+    let mut positions = vec![[0.0f32; 3]; ptq::num_child_vertices(mesh)];
+    ptq::refine_points(mesh, rules, &mut positions);
+    let child = ptq::child_mesh(mesh, positions);
+    let child_tags = ptq::child_tags(mesh, &child, tags);
+    (Level::Mesh(child), Some(child_tags))
+}
+
+/// The output of a last level whose faces all have `size` corners, without the faces `hole`
+/// names (when `any` is true).
+fn without_holes(
+    positions: Vec<f32>,
+    mut indices: Vec<u32>,
+    size: usize,
+    any: bool,
+    hole: impl Fn(usize) -> bool,
+) -> PolyMesh {
+    if any {
+        let mut kept = 0usize;
+        for f in 0..indices.len() / size {
+            if !hole(f) {
+                indices.copy_within(f * size..(f + 1) * size, kept * size);
+                kept += 1;
+            }
+        }
+        indices.truncate(kept * size);
+    }
+    let face_sizes = vec![size as u32; indices.len() / size];
+    PolyMesh { positions, indices, face_sizes }
 }

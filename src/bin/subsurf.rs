@@ -1,25 +1,36 @@
 //! `subsurf --scheme catmull-clark --levels N [--boundary MODE] INPUT.obj -o OUTPUT.obj`
+//!
+//! OpenSubdiv `t` tags in the OBJ (creases, corners, holes, `interpolateboundary`,
+//! `creasemethod`, `smoothtriangles`) are used unless `--ignore-tags`; `--boundary` and
+//! `--crease-method` override the file's `interpolateboundary` and `creasemethod`.
 
 use std::process::ExitCode;
 use std::time::Instant;
-use subsurf::io::{read_obj, write_obj};
+use subsurf::io::{read_obj, read_obj_with_tags, write_obj};
 use subsurf::scheme::{Boundary, Options, Scheme};
-use subsurf::HalfEdgeMesh;
+use subsurf::{CreaseMethod, HalfEdgeMesh, Tags};
 
-const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
+const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--crease-method M] [--ignore-tags]
+               [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
 
   --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, sqrt3,
                      bilinear, midpoint;
                      or a comma-separated list, one scheme per level
   --levels N         levels of subdivision, 0 or more (default 1, or the list's length)
-  --boundary MODE    edge-and-corner (default), edge-only, fixed, average, none (doo-sabin)
+  --boundary MODE    edge-and-corner, edge-only, fixed, average, none (catmull-clark, loop,
+                     doo-sabin); default: the file's 'interpolateboundary' tag, else
+                     edge-and-corner
+  --crease-method M  uniform or chaikin; default: the file's 'creasemethod' tag, else uniform
+  --ignore-tags      ignore the file's OpenSubdiv 't' tags (creases, corners, holes, ...)
   --max-faces N      refuse when the result would have more faces (default 16777216)
   --stats            print counts and timings to stderr
   -o OUTPUT.obj      where to write the result (default: standard output)";
 
 struct Args {
     schemes: Vec<Scheme>,
-    boundary: Boundary,
+    boundary: Option<Boundary>,
+    crease_method: Option<CreaseMethod>,
+    ignore_tags: bool,
     max_faces: u64,
     stats: bool,
     input: String,
@@ -29,7 +40,9 @@ struct Args {
 fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut parsed = Args {
         schemes: vec![Scheme::CatmullClark],
-        boundary: Boundary::default(),
+        boundary: None,
+        crease_method: None,
+        ignore_tags: false,
         max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
         stats: false,
         input: String::new(),
@@ -53,8 +66,13 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 })?);
             }
             "--boundary" => {
-                parsed.boundary = value("--boundary")?.parse().map_err(|e| format!("{e}"))?
+                parsed.boundary = Some(value("--boundary")?.parse().map_err(|e| format!("{e}"))?)
             }
+            "--crease-method" => {
+                parsed.crease_method =
+                    Some(value("--crease-method")?.parse().map_err(|e| format!("{e}"))?)
+            }
+            "--ignore-tags" => parsed.ignore_tags = true,
             "--max-faces" => {
                 let v = value("--max-faces")?;
                 parsed.max_faces =
@@ -91,20 +109,27 @@ fn run(args: Args) -> Result<(), String> {
     let start = Instant::now();
     let text = std::fs::read_to_string(&args.input)
         .map_err(|e| format!("cannot read '{}': {e}", args.input))?;
-    let input = read_obj(&text).map_err(|e| format!("{}: {e}", args.input))?;
+    let at = |e: subsurf::Error| format!("{}: {e}", args.input);
+    let (input, mut tags, file_boundary) = if args.ignore_tags {
+        (read_obj(&text).map_err(at)?, Tags::default(), None)
+    } else {
+        let obj = read_obj_with_tags(&text).map_err(at)?;
+        (obj.mesh, obj.tags, obj.boundary)
+    };
+    if let Some(method) = args.crease_method {
+        tags.crease_method = method;
+    }
+    let boundary = args.boundary.or(file_boundary).unwrap_or_default();
     let read_time = start.elapsed();
 
     let t = Instant::now();
     let mesh = HalfEdgeMesh::from_poly(&input).map_err(|e| format!("{}: {e}", args.input))?;
     let build_time = t.elapsed();
-    let options = Options {
-        schemes: args.schemes.clone(),
-        boundary: args.boundary,
-        max_faces: args.max_faces,
-    };
+    let options = Options { schemes: args.schemes.clone(), boundary, max_faces: args.max_faces };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
-    let output = subsurf::scheme::subdivide_mesh(mesh, &options).map_err(|e| e.to_string())?;
+    let output = subsurf::scheme::subdivide_mesh_with_tags(mesh, &options, &tags)
+        .map_err(|e| e.to_string())?;
     let refine_time = t.elapsed();
 
     let t = Instant::now();
@@ -124,7 +149,14 @@ fn run(args: Args) -> Result<(), String> {
     if args.stats {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         let names: Vec<&str> = args.schemes.iter().map(|s| s.name()).collect();
-        eprintln!("schemes     {} ({} boundary)", names.join(","), args.boundary);
+        eprintln!("schemes     {} ({boundary} boundary)", names.join(","));
+        eprintln!(
+            "tags        {} creases, {} corners, {} holes ({} creases)",
+            tags.creases.len(),
+            tags.corners.len(),
+            tags.holes.len(),
+            tags.crease_method
+        );
         eprintln!("input       {in_v} vertices, {in_e} edges, {in_f} faces");
         eprintln!("output      {} vertices, {} faces", output.num_vertices(), output.num_faces());
         eprintln!("read        {:.3} ms", ms(read_time));

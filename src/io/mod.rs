@@ -2,4 +2,4 @@
 
 pub mod obj;
 
-pub use obj::{read_obj, write_obj};
+pub use obj::{read_obj, read_obj_with_tags, write_obj, ObjMesh};

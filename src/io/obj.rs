@@ -1,23 +1,52 @@
-//! Wavefront OBJ: `v` and `f` lines in, `v` and `f` lines out.
+//! Wavefront OBJ: `v` and `f` lines in, `v` and `f` lines out; OpenSubdiv's `t` tag lines in.
 //!
 //! Faces may use the `v`, `v/vt`, `v//vn` and `v/vt/vn` forms and negative (relative) indices;
 //! only the position index is used. Comments and every other line (`vt`, `vn`, `g`, `o`, `s`,
-//! `usemtl`, OpenSubdiv's `t` tags, ...) are skipped. Errors give the 1-based line number.
+//! `usemtl`, ...) are skipped; [`read_obj`] skips `t` lines too, [`read_obj_with_tags`] reads
+//! them (syntax in `DEVELOPERS.md`, section "OBJ tags"). Errors give the 1-based line number.
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
+use crate::scheme::Boundary;
+use crate::tags::{Corner, Crease, CreaseMethod, Tags};
+use std::collections::HashSet;
 use std::fmt::Write as _;
 
 fn obj_error(line: usize, message: impl Into<String>) -> Error {
     Error::Obj { line, message: message.into() }
 }
 
+/// An OBJ file's mesh with the OpenSubdiv tags it carries.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ObjMesh {
+    pub mesh: PolyMesh,
+    /// Creases, corners, holes, `creasemethod` and `smoothtriangles`.
+    pub tags: Tags,
+    /// The file's `interpolateboundary` tag: 0 `None`, 1 `EdgeAndCorner`, 2 `EdgeOnly`; `None`
+    /// (no value) when the file has no such tag.
+    pub boundary: Option<Boundary>,
+}
+
 /// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, repeated vertices, NaN)
-/// happen here too, so that the error can name the line.
+/// happen here too, so that the error can name the line. `t` lines are skipped.
 pub fn read_obj(text: &str) -> Result<PolyMesh> {
+    read(text, false).map(|obj| obj.mesh)
+}
+
+/// Parses OBJ text and its OpenSubdiv `t` tags: `crease`, `corner`, `hole`,
+/// `interpolateboundary`, `creasemethod`, `smoothtriangles`. Hierarchical edits (`vertexedit`,
+/// `edgeedit`, `faceedit`), face-varying tags and unknown tag names are skipped. A malformed tag
+/// (counts that do not match its values, a vertex, edge or face the file does not have, a
+/// negative or NaN sharpness, an unknown option value) is an error naming its line.
+pub fn read_obj_with_tags(text: &str) -> Result<ObjMesh> {
+    read(text, true)
+}
+
+fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
     let mut mesh = PolyMesh::default();
     // Line of each face, to name it when a later check fails.
     let mut face_lines: Vec<usize> = Vec::new();
+    let mut tags: Vec<RawTag> = Vec::new();
     for (number, raw) in text.lines().enumerate() {
         let line_no = number + 1;
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -59,6 +88,11 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
                 mesh.face_sizes.push(n as u32);
                 face_lines.push(line_no);
             }
+            Some("t") if with_tags => {
+                if let Some(tag) = parse_tag(words, line_no)? {
+                    tags.push(tag);
+                }
+            }
             _ => {}
         }
     }
@@ -83,7 +117,229 @@ pub fn read_obj(text: &str) -> Result<PolyMesh> {
             "the file has no 'v' lines; a mesh needs vertices",
         ));
     }
-    Ok(mesh)
+    let mut obj = ObjMesh { mesh, ..ObjMesh::default() };
+    apply_tags(&mut obj, &tags)?;
+    Ok(obj)
+}
+
+/// One `t NAME nint/nfloat/nstring ints... floats... strings...` line.
+struct RawTag<'a> {
+    line: usize,
+    name: &'a str,
+    ints: Vec<i64>,
+    floats: Vec<f32>,
+    strings: Vec<&'a str>,
+}
+
+/// Tags that are read elsewhere or not at all: skipped without looking at their values.
+const SKIPPED_TAGS: &[&str] = &[
+    "vertexedit",
+    "edgeedit",
+    "faceedit",
+    "facevaryinginterpolateboundary",
+    "facevaryingpropagatecorners",
+];
+const KNOWN_TAGS: &[&str] =
+    &["crease", "corner", "hole", "interpolateboundary", "creasemethod", "smoothtriangles"];
+
+fn parse_tag<'a>(
+    mut words: std::str::SplitWhitespace<'a>,
+    line: usize,
+) -> Result<Option<RawTag<'a>>> {
+    let name = words
+        .next()
+        .ok_or_else(|| obj_error(line, "'t' needs a tag name, e.g. 't crease 2/1/0 0 1 2.5'"))?;
+    if SKIPPED_TAGS.contains(&name) || !KNOWN_TAGS.contains(&name) {
+        return Ok(None);
+    }
+    let counts = words.next().ok_or_else(|| {
+        obj_error(line, format!("tag '{name}' needs its counts 'nint/nfloat/nstring'"))
+    })?;
+    let parsed: Vec<Option<usize>> = counts.split('/').map(|c| c.parse().ok()).collect();
+    let [Some(ni), Some(nf), Some(ns)] = parsed[..] else {
+        return Err(obj_error(
+            line,
+            format!("tag '{name}': counts '{counts}' are not 'nint/nfloat/nstring' (e.g. 2/1/0)"),
+        ));
+    };
+    let values: Vec<&str> = words.collect();
+    if values.len() != ni + nf + ns {
+        return Err(obj_error(
+            line,
+            format!(
+                "tag '{name}' declares {ni} integers, {nf} floats and {ns} strings ({} values) but has {} values",
+                ni + nf + ns,
+                values.len()
+            ),
+        ));
+    }
+    let ints = values[..ni]
+        .iter()
+        .map(|w| {
+            w.parse::<i64>()
+                .map_err(|_| obj_error(line, format!("tag '{name}': '{w}' is not an integer")))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let floats = values[ni..ni + nf]
+        .iter()
+        .map(|w| {
+            let x: f32 = w
+                .parse()
+                .map_err(|_| obj_error(line, format!("tag '{name}': '{w}' is not a number")))?;
+            if x.is_nan() {
+                return Err(obj_error(line, format!("tag '{name}': sharpness '{w}' is NaN")));
+            }
+            if x < 0.0 {
+                return Err(obj_error(
+                    line,
+                    format!(
+                        "tag '{name}': sharpness {w} is negative; give 0 (smooth) to 10 (infinitely sharp)"
+                    ),
+                ));
+            }
+            Ok(x)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let strings = values[ni + nf..].to_vec();
+    Ok(Some(RawTag { line, name, ints, floats, strings }))
+}
+
+impl RawTag<'_> {
+    fn error(&self, message: impl std::fmt::Display) -> Error {
+        obj_error(self.line, format!("tag '{}': {message}", self.name))
+    }
+
+    /// Checks the number of integers (`ints` says which counts are fine), floats and strings.
+    fn expect(&self, ints_ok: bool, ints: &str, floats: usize, strings: usize) -> Result<()> {
+        if !ints_ok {
+            return Err(self.error(format!("needs {ints}, got {}", self.ints.len())));
+        }
+        if self.floats.len() != floats || self.strings.len() != strings {
+            return Err(self.error(format!(
+                "needs {floats} float(s) and {strings} string(s), got {} and {}",
+                self.floats.len(),
+                self.strings.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// One sharpness per item, or one for all.
+    fn sharpness(&self, items: usize) -> Result<impl Fn(usize) -> f32 + '_> {
+        if self.floats.len() != 1 && self.floats.len() != items {
+            return Err(self.error(format!(
+                "needs one sharpness for all, or one per item ({items}), got {}",
+                self.floats.len()
+            )));
+        }
+        Ok(move |i: usize| self.floats[if self.floats.len() == 1 { 0 } else { i }])
+    }
+
+    fn index(&self, value: i64, count: usize, what: &str) -> Result<u32> {
+        if value < 0 || value as u64 >= count as u64 {
+            let range = if count == 0 { "none".to_string() } else { format!("0..{}", count - 1) };
+            return Err(self.error(format!(
+                "{what} {value} does not exist; the file has {count} {what}s ({range}, 0-based)"
+            )));
+        }
+        Ok(value as u32)
+    }
+
+    fn string(&self, allowed: &[&str]) -> Result<&str> {
+        let s = self.strings[0];
+        if allowed.contains(&s) {
+            Ok(s)
+        } else {
+            let list: Vec<String> = allowed.iter().map(|a| format!("'{a}'")).collect();
+            Err(self.error(format!("unknown value '{s}'; use {}", list.join(" or "))))
+        }
+    }
+}
+
+fn apply_tags(obj: &mut ObjMesh, raw: &[RawTag]) -> Result<()> {
+    let (vertices, faces) = (obj.mesh.num_vertices(), obj.mesh.num_faces());
+    let mut edges: Option<HashSet<(u32, u32)>> = None;
+    for t in raw {
+        match t.name {
+            "crease" => {
+                let n = t.ints.len();
+                t.expect(
+                    n >= 2 && n % 2 == 0,
+                    "vertex pairs (an even number of integers)",
+                    t.floats.len(),
+                    0,
+                )?;
+                let sharpness = t.sharpness(n / 2)?;
+                let edges = edges.get_or_insert_with(|| face_edges(&obj.mesh));
+                for (i, pair) in t.ints.chunks_exact(2).enumerate() {
+                    let a = t.index(pair[0], vertices, "vertex")?;
+                    let b = t.index(pair[1], vertices, "vertex")?;
+                    if !edges.contains(&(a.min(b), a.max(b))) {
+                        return Err(t.error(format!(
+                            "vertices {a} and {b} are not joined by an edge; a crease names the two vertices of an edge"
+                        )));
+                    }
+                    obj.tags.creases.push(Crease { vertices: [a, b], sharpness: sharpness(i) });
+                }
+            }
+            "corner" => {
+                let n = t.ints.len();
+                t.expect(n >= 1, "one or more vertices", t.floats.len(), 0)?;
+                let sharpness = t.sharpness(n)?;
+                for (i, &v) in t.ints.iter().enumerate() {
+                    let vertex = t.index(v, vertices, "vertex")?;
+                    obj.tags.corners.push(Corner { vertex, sharpness: sharpness(i) });
+                }
+            }
+            "hole" => {
+                t.expect(!t.ints.is_empty(), "one or more faces", 0, 0)?;
+                for &f in &t.ints {
+                    obj.tags.holes.push(t.index(f, faces, "face")?);
+                }
+            }
+            "interpolateboundary" => {
+                t.expect(t.ints.len() == 1, "one integer (0, 1 or 2)", 0, 0)?;
+                obj.boundary = Some(match t.ints[0] {
+                    0 => Boundary::None,
+                    1 => Boundary::EdgeAndCorner,
+                    2 => Boundary::EdgeOnly,
+                    other => {
+                        return Err(t.error(format!(
+                            "{other} is not a boundary mode; use 0 (none), 1 (edge-and-corner) or 2 (edge-only)"
+                        )))
+                    }
+                });
+            }
+            "creasemethod" => {
+                t.expect(t.ints.is_empty(), "no integers", 0, 1)?;
+                obj.tags.crease_method = match t.string(&["normal", "uniform", "chaikin"])? {
+                    "chaikin" => CreaseMethod::Chaikin,
+                    _ => CreaseMethod::Uniform,
+                };
+            }
+            "smoothtriangles" => {
+                t.expect(t.ints.is_empty(), "no integers", 0, 1)?;
+                obj.tags.smooth_triangles = t.string(&["catmark", "smooth"])? == "smooth";
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Every edge of the faces, as (smaller, larger) vertex pairs.
+fn face_edges(mesh: &PolyMesh) -> HashSet<(u32, u32)> {
+    let mut edges = HashSet::with_capacity(mesh.indices.len());
+    let mut start = 0usize;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        for (k, &a) in face.iter().enumerate() {
+            let b = face[(k + 1) % face.len()];
+            edges.insert((a.min(b), a.max(b)));
+        }
+        start += n as usize;
+    }
+    edges
 }
 
 fn parse_coordinate(word: &str, line: usize) -> Result<f32> {

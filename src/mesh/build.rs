@@ -187,7 +187,10 @@ fn build_edges(mesh: &mut HalfEdgeMesh, out_to: &[u32]) {
     let mut he_edge = vec![0u32; num_half_edges];
     let mut he_next_around_edge = vec![0u32; num_half_edges];
     let mut filled = 0usize;
+    let mut non_manifold = false;
     for_each_owned_edge(mesh, out_to, |a, b, run, opposite| {
+        // Two half-edges the same way, or more than two in all (then one run has two or more).
+        non_manifold |= run.len() > 1 || opposite.len() > 1;
         let e = edge_vertices.len() as u32;
         edge_vertices.push([a, b]);
         let list = &mut edge_half_edges[filled..filled + run.len() + opposite.len()];
@@ -204,6 +207,7 @@ fn build_edges(mesh: &mut HalfEdgeMesh, out_to: &[u32]) {
     mesh.edge_vertices = edge_vertices;
     mesh.edge_offsets = edge_offsets;
     mesh.edge_half_edges = edge_half_edges;
+    mesh.non_manifold_edges = non_manifold;
 }
 
 fn merge_sorted(a: &[u32], b: &[u32], out: &mut [u32]) {
@@ -232,4 +236,79 @@ fn put_boundary_half_edges_first(mesh: &mut HalfEdgeMesh) {
             mesh.vertex_half_edges.swap(start, i);
         }
     }
+}
+
+/// Builds a mesh whose edges are already known: `he_edge[h]` is the edge of half-edge `h`
+/// (`0..num_edges`, every edge used). A refinement host that derives its child edges by index
+/// arithmetic uses this instead of [`from_faces`], which would merge two child edges that happen
+/// to join the same two vertices (as OpenSubdiv keeps them apart). Only counting sorts: each
+/// edge lists its half-edges in ascending order, each vertex its outgoing ones, a boundary one
+/// first. The input must describe valid cells (at least 3 distinct vertices each).
+pub(crate) fn from_cells_and_edges(
+    positions: Vec<[f32; 3]>,
+    cell_offsets: Vec<u32>,
+    he_from: Vec<u32>,
+    he_edge: Vec<u32>,
+    num_edges: usize,
+) -> HalfEdgeMesh {
+    let nh = he_from.len();
+    let mut he_cell = vec![0u32; nh];
+    for (c, range) in cell_offsets.windows(2).enumerate() {
+        he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
+    }
+    let mut mesh = HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, ..Default::default() };
+
+    let mut edge_offsets = vec![0u32; num_edges + 1];
+    for &e in &he_edge {
+        edge_offsets[e as usize + 1] += 1;
+    }
+    for e in 0..num_edges {
+        edge_offsets[e + 1] += edge_offsets[e];
+    }
+    let mut fill = edge_offsets.clone();
+    let mut edge_half_edges = vec![0u32; nh];
+    for (h, &e) in he_edge.iter().enumerate() {
+        edge_half_edges[fill[e as usize] as usize] = h as u32;
+        fill[e as usize] += 1;
+    }
+    drop(fill);
+    let mut he_next_around_edge = vec![0u32; nh];
+    let mut edge_vertices = vec![[0u32; 2]; num_edges];
+    let mut non_manifold = false;
+    for e in 0..num_edges {
+        let list = &edge_half_edges[edge_offsets[e] as usize..edge_offsets[e + 1] as usize];
+        for (i, &h) in list.iter().enumerate() {
+            he_next_around_edge[h as usize] = list[(i + 1) % list.len()];
+        }
+        let first = list[0];
+        edge_vertices[e] = [mesh.he_from[first as usize], mesh.to_vertex(first)];
+        non_manifold |= list.len() > 2
+            || (list.len() == 2
+                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
+    }
+    mesh.he_edge = he_edge;
+    mesh.he_next_around_edge = he_next_around_edge;
+    mesh.edge_vertices = edge_vertices;
+    mesh.edge_offsets = edge_offsets;
+    mesh.edge_half_edges = edge_half_edges;
+    mesh.non_manifold_edges = non_manifold;
+
+    let num_vertices = mesh.positions.len();
+    let mut vertex_offsets = vec![0u32; num_vertices + 1];
+    for &v in &mesh.he_from {
+        vertex_offsets[v as usize + 1] += 1;
+    }
+    for v in 0..num_vertices {
+        vertex_offsets[v + 1] += vertex_offsets[v];
+    }
+    let mut fill = vertex_offsets.clone();
+    let mut vertex_half_edges = vec![0u32; nh];
+    for (h, &v) in mesh.he_from.iter().enumerate() {
+        vertex_half_edges[fill[v as usize] as usize] = h as u32;
+        fill[v as usize] += 1;
+    }
+    mesh.vertex_offsets = vertex_offsets;
+    mesh.vertex_half_edges = vertex_half_edges;
+    put_boundary_half_edges_first(&mut mesh);
+    mesh
 }

@@ -39,6 +39,10 @@ pub struct HalfEdgeMesh {
     /// `v`, a boundary one first when there is one; length `V + 1`.
     pub(crate) vertex_offsets: Vec<u32>,
     pub(crate) vertex_half_edges: Vec<u32>,
+    /// True when some edge has more than two half-edges or two running the same way. Set by the
+    /// builder (for free, while it pairs half-edges) and inherited by refined meshes, so a scheme
+    /// can choose its general path without scanning the mesh.
+    pub(crate) non_manifold_edges: bool,
 }
 
 /// Where a mesh stops being a 2-manifold, for schemes that need to say so.
@@ -54,6 +58,18 @@ impl HalfEdgeMesh {
     /// Builds a mesh from flat arrays, validating all of them. See [`PolyMesh`] for the layout.
     pub fn from_faces(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<Self> {
         build::from_faces(positions, indices, face_sizes)
+    }
+
+    /// Builds a mesh from cells whose edges are already numbered (see
+    /// [`build::from_cells_and_edges`]); for refinement hosts.
+    pub(crate) fn from_cells_and_edges(
+        positions: Vec<[f32; 3]>,
+        cell_offsets: Vec<u32>,
+        he_from: Vec<u32>,
+        he_edge: Vec<u32>,
+        num_edges: usize,
+    ) -> Self {
+        build::from_cells_and_edges(positions, cell_offsets, he_from, he_edge, num_edges)
     }
 
     /// Builds a mesh from a [`PolyMesh`].
@@ -197,16 +213,27 @@ impl HalfEdgeMesh {
         Ok(self.num_cells() as u32 - 1)
     }
 
+    /// True when some edge has more than two half-edges, or two running the same way (a
+    /// non-manifold edge). Vertices whose faces form several fans around manifold edges do not
+    /// count here; [`HalfEdgeMesh::first_non_manifold`] finds those too.
+    pub fn has_non_manifold_edges(&self) -> bool {
+        self.non_manifold_edges
+    }
+
+    /// True when edge `e` has more than two half-edges, or two running the same way.
+    #[inline]
+    pub(crate) fn is_non_manifold_edge(&self, e: u32) -> bool {
+        let hs = &self.edge_half_edges[self.edge_range(e as usize)];
+        hs.len() > 2
+            || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize])
+    }
+
     /// The first place the mesh is not a 2-manifold, if any.
     pub fn first_non_manifold(&self) -> Option<NonManifold> {
-        for e in 0..self.num_edges() {
-            let hs = &self.edge_half_edges
-                [self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize];
-            let bad = hs.len() > 2
-                || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize]);
-            if bad {
-                let [from, to] = self.edge_vertices[e];
-                return Some(NonManifold::Edge { edge: e as u32, from, to });
+        if self.non_manifold_edges {
+            if let Some(e) = (0..self.num_edges() as u32).find(|&e| self.is_non_manifold_edge(e)) {
+                let [from, to] = self.edge_vertices[e as usize];
+                return Some(NonManifold::Edge { edge: e, from, to });
             }
         }
         (0..self.num_vertices() as u32)
@@ -214,8 +241,9 @@ impl HalfEdgeMesh {
             .map(|vertex| NonManifold::Vertex { vertex })
     }
 
-    /// True when the faces around `v` form one fan (assuming manifold edges).
-    fn is_single_fan(&self, v: u32) -> bool {
+    /// True when the faces around `v` form one fan (assuming manifold edges); true for a vertex
+    /// without faces.
+    pub(crate) fn is_single_fan(&self, v: u32) -> bool {
         let out = self.out_half_edges(v);
         let Some(&start) = out.first() else {
             return true;

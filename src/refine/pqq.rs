@@ -17,7 +17,8 @@
 //! entries of its own iteration.
 
 use crate::mesh::HalfEdgeMesh;
-use crate::rules::QuadSplitRules;
+use crate::rules::crease::decay;
+use crate::rules::{LevelTags, QuadSplitRules};
 
 /// Child vertex, edge, half-edge and cell counts of one PQQ level, in `u64` so that a guard can
 /// compare them before anything is allocated.
@@ -189,5 +190,41 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         edge_half_edges,
         vertex_offsets,
         vertex_half_edges,
+        // The halves of a non-manifold edge are non-manifold; inner edges never are.
+        non_manifold_edges: mesh.non_manifold_edges,
     }
+}
+
+/// The child level's tags (see [`crate::rules::crease`]): the halves `2e`, `2e + 1` of parent
+/// edge `e` get its sharpness decayed at its first and second vertex, inner edges are smooth;
+/// old vertices keep their decayed sharpness, new ones are smooth; child cell `h` is a hole when
+/// its parent cell is. `child` is [`child_mesh`] of `mesh`.
+pub fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -> LevelTags {
+    let (nv, nf, ne, nh) =
+        (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges(), mesh.num_half_edges());
+    let mut edges = vec![0.0f32; 2 * ne + nh];
+    for (e, &s) in tags.edges.iter().enumerate() {
+        if s > 0.0 {
+            let [a, b] = mesh.edge_vertices[e];
+            edges[2 * e] = tags.decay_at(s, a);
+            edges[2 * e + 1] = tags.decay_at(s, b);
+        }
+    }
+    let mut vertices = vec![0.0f32; nv + nf + ne];
+    for (child, &s) in vertices.iter_mut().zip(&tags.vertices) {
+        *child = decay(s);
+    }
+    let holes = if tags.has_holes() {
+        mesh.he_cell.iter().map(|&c| tags.holes[c as usize]).collect()
+    } else {
+        Vec::new()
+    };
+    let mut non_manifold = Vec::new();
+    if !tags.non_manifold.is_empty() {
+        non_manifold = Vec::with_capacity(nv + nf + ne);
+        non_manifold.extend_from_slice(&tags.non_manifold);
+        non_manifold.resize(nv + nf, false);
+        non_manifold.extend((0..ne as u32).map(|e| mesh.is_non_manifold_edge(e)));
+    }
+    LevelTags::new(child, edges, vertices, holes, non_manifold, tags.method, tags.smooth_triangles)
 }

@@ -6,9 +6,17 @@
 //! edge point of `hk`'s edge: child `k` has its parent's corner `k` in position `k`, as in
 //! OpenSubdiv, so each child keeps its parent's parametric orientation. Every loop writes only
 //! its own entries.
+//!
+//! Child edges, as in [`super::pqq`]: the half of parent edge `e` at its first vertex is `2e`,
+//! at its second `2e + 1`; triangle `t`'s inner edges are `2E + 3t` (`e0`–`e1`), `2E + 3t + 1`
+//! (`e1`–`e2`) and `2E + 3t + 2` (`e2`–`e0`). [`child_mesh`] numbers them so, by index
+//! arithmetic, and so keeps apart two child edges that join the same two vertices (as
+//! OpenSubdiv does; merging them by vertex pair would change the topology of some
+//! non-manifold inputs).
 
 use crate::mesh::HalfEdgeMesh;
-use crate::rules::TriSplitRules;
+use crate::rules::crease::decay;
+use crate::rules::{LevelTags, TriSplitRules};
 
 /// Child `[vertices, edges, half-edges, cells]` of one PTQ level of a triangle mesh.
 pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [u64; 4] {
@@ -49,4 +57,73 @@ pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
 #[inline]
 pub fn triangle_children([a, b, c]: [u32; 3], [e0, e1, e2]: [u32; 3]) -> [u32; 12] {
     [a, e0, e2, e0, b, e1, e2, e1, c, e1, e2, e0]
+}
+
+/// The complete child mesh, with `positions` from [`refine_points`] and child edges numbered as
+/// the module docs say. The mesh must be all triangles.
+pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh {
+    let ne = mesh.num_edges() as u32;
+    let half_at = |e: u32, a: u32| 2 * e + (mesh.edge_vertices[e as usize][0] != a) as u32;
+    let he_from = child_face_indices(mesh);
+    let mut he_edge = vec![0u32; 4 * mesh.num_half_edges()];
+    for (t, out) in he_edge.chunks_exact_mut(12).enumerate() {
+        let h = 3 * t;
+        let [a, b, c] = [mesh.he_from[h], mesh.he_from[h + 1], mesh.he_from[h + 2]];
+        let [e0, e1, e2] = [mesh.he_edge[h], mesh.he_edge[h + 1], mesh.he_edge[h + 2]];
+        let inner = 2 * ne + 3 * t as u32;
+        let (i01, i12, i20) = (inner, inner + 1, inner + 2);
+        out.copy_from_slice(&[
+            // (a, e0, e2): a→e0, e0→e2, e2→a
+            half_at(e0, a),
+            i20,
+            half_at(e2, a),
+            // (e0, b, e1): e0→b, b→e1, e1→e0
+            half_at(e0, b),
+            half_at(e1, b),
+            i01,
+            // (e2, e1, c): e2→e1, e1→c, c→e2
+            i12,
+            half_at(e1, c),
+            half_at(e2, c),
+            // (e1, e2, e0): e1→e2, e2→e0, e0→e1
+            i12,
+            i20,
+            i01,
+        ]);
+    }
+    let cells = (0..=4 * mesh.num_cells() as u32).map(|c| 3 * c).collect();
+    let num_edges = 2 * mesh.num_edges() + 3 * mesh.num_cells();
+    HalfEdgeMesh::from_cells_and_edges(positions, cells, he_from, he_edge, num_edges)
+}
+
+/// The child level's tags (see [`crate::rules::crease`]) for `child`, [`child_mesh`] of `mesh`:
+/// the halves `2e`, `2e + 1` of parent edge `e` get its sharpness decayed at its first and
+/// second vertex, inner edges are smooth; old vertices keep their decayed sharpness, edge points
+/// are smooth; the four children of a hole are holes.
+pub fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -> LevelTags {
+    let (nv, ne, nt) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
+    let mut edges = vec![0.0f32; 2 * ne + 3 * nt];
+    for (e, &s) in tags.edges.iter().enumerate() {
+        if s > 0.0 {
+            let [a, b] = mesh.edge_vertices[e];
+            edges[2 * e] = tags.decay_at(s, a);
+            edges[2 * e + 1] = tags.decay_at(s, b);
+        }
+    }
+    let mut vertices = vec![0.0f32; nv + ne];
+    for (child, &s) in vertices.iter_mut().zip(&tags.vertices) {
+        *child = decay(s);
+    }
+    let holes = if tags.has_holes() {
+        (0..4 * nt).map(|c| tags.holes[c / 4]).collect()
+    } else {
+        Vec::new()
+    };
+    let mut non_manifold = Vec::new();
+    if !tags.non_manifold.is_empty() {
+        non_manifold = Vec::with_capacity(nv + ne);
+        non_manifold.extend_from_slice(&tags.non_manifold);
+        non_manifold.extend((0..ne as u32).map(|e| mesh.is_non_manifold_edge(e)));
+    }
+    LevelTags::new(child, edges, vertices, holes, non_manifold, tags.method, tags.smooth_triangles)
 }

@@ -6,16 +6,18 @@
 //! of the host's topology split and pass it to the host's `refine` function.
 
 mod catmull_clark;
+pub mod crease;
 mod doo_sabin;
 mod linear;
 mod loop_subdivision;
 mod quad_triangle;
 mod sqrt3;
 
-pub use catmull_clark::CatmullClark;
+pub use catmull_clark::{CatmullClark, CreasedCatmullClark};
+pub use crease::LevelTags;
 pub use doo_sabin::{doo_sabin_weight, DooSabin};
 pub use linear::{Bilinear, Midpoint};
-pub use loop_subdivision::{loop_beta, Loop};
+pub use loop_subdivision::{loop_beta, CreasedLoop, Loop};
 pub use quad_triangle::{triangle_vertex_weight, QuadTriangle};
 pub use sqrt3::{sqrt3_alpha, Sqrt3, Sqrt3Rules};
 
@@ -120,6 +122,53 @@ pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u3
         }
     }
     r
+}
+
+/// The one-ring of `vertex`, gathered by walking once around it (across each edge from a
+/// face's incoming half-edge to the next face's outgoing one), calling `per_face(h)` for each
+/// half-edge `h` leaving it. `None` when the walk does not visit every face at the vertex exactly
+/// once in one fan: the faces form several fans (a non-manifold vertex, which the primal schemes
+/// keep in place as OpenSubdiv does), or a non-manifold edge sends the walk astray. For a vertex
+/// without faces, an empty ring.
+///
+/// The walk reads what [`ring`] reads, so it costs no more; the untagged Catmull-Clark and Loop
+/// rules use it. It relies on the mesh convention that a boundary half-edge leaves a vertex first
+/// in its list.
+#[inline]
+pub(crate) fn fan(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u32)) -> Option<Ring> {
+    let out = mesh.out_half_edges(vertex);
+    let mut r = Ring::default();
+    let Some(&start) = out.first() else {
+        return Some(r);
+    };
+    let open = mesh.he_next_around_edge[start as usize] == start;
+    let mut h = start;
+    for _ in 0..out.len() {
+        per_face(h);
+        r.faces += 1;
+        let to = vec3(mesh.positions[mesh.to_vertex(h) as usize]);
+        r.neighbours += to;
+        let incoming = mesh.prev_in_cell(h);
+        let across = mesh.he_next_around_edge[incoming as usize];
+        if across == incoming {
+            // The far end of an open fan: its incoming boundary edge.
+            let from = vec3(mesh.positions[mesh.he_from[incoming as usize] as usize]);
+            r.neighbours += from;
+            r.valence = r.faces + 1;
+            r.boundary = from + vec3(mesh.positions[mesh.to_vertex(start) as usize]);
+            r.boundary_edges = 2;
+            return (open && r.faces as usize == out.len()).then_some(r);
+        }
+        if across == start {
+            r.valence = r.faces;
+            return (!open && r.faces as usize == out.len()).then_some(r);
+        }
+        if mesh.he_from[across as usize] != vertex {
+            return None;
+        }
+        h = across;
+    }
+    None
 }
 
 /// The new position of a vertex with boundary edges under `boundary`, or `None` for an interior

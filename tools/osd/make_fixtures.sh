@@ -10,6 +10,9 @@
 #                                  interpolateboundary from the file (edge-only when the file has no
 #                                  interpolateboundary tag, as OpenSubdiv's regression suite),
 #                                  levels 1-3; catmark_* with Catmull-Clark, loop_* with Loop
+#   tests/meshes/osd_nonmanifold/  copies of the non-manifold shapes (SOURCES.md says NON-manifold,
+#                                  or the name has 'nonman'; no hedit)
+#   tests/fixtures/osd_nonmanifold/  those shapes, tagged as above, levels 1-3
 #
 # Each directory gets a MANIFEST.tsv (fixture, scheme, boundary, level, input, ...) that the Rust
 # tests read, so adding fixtures needs no code change. A shape whose level-3 output would be over
@@ -47,13 +50,23 @@ manifold_shapes() {
         grep -v hedit | sed 's/\.obj$//' | sort
 }
 
+# The non-manifold shapes: NON-manifold in SOURCES.md, or 'nonman' in the name; without hedit ones.
+nonmanifold_shapes() {
+    awk -F'|' '$2 ~ /\.obj/ { name = $2; m = $7; gsub(/ /, "", name);
+                               if (m ~ /NON/ || name ~ /nonman/) print name }' "$sources" |
+        grep -v hedit | sed 's/\.obj$//' | sort
+}
+
 # Inputs.
-rm -rf tests/meshes/osd
-mkdir -p tests/meshes/osd
+rm -rf tests/meshes/osd tests/meshes/osd_nonmanifold
+mkdir -p tests/meshes/osd tests/meshes/osd_nonmanifold
 for s in $(manifold_shapes); do
     case $s in catmark_*|bilinear_*|loop_*) cp "$shapes/$s.obj" tests/meshes/osd/ ;; esac
 done
-chmod 644 tests/meshes/osd/*.obj
+for s in $(nonmanifold_shapes); do
+    case $s in catmark_*|loop_*) cp "$shapes/$s.obj" tests/meshes/osd_nonmanifold/ ;; esac
+done
+chmod 644 tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj
 rm -f tests/meshes/own_*.obj
 python3 "$here/make_meshes.py" tests tests/meshes >/dev/null
 
@@ -69,7 +82,8 @@ tagged_boundary() {
     esac
 }
 
-# make_set DIR KIND: writes DIR/*.obj and DIR/MANIFEST.tsv; KIND is untagged or tagged.
+# make_set DIR KIND: writes DIR/*.obj and DIR/MANIFEST.tsv; KIND is untagged, tagged or
+# nonmanifold (tagged, on the non-manifold shapes).
 make_set() {
     local dir=$1 kind=$2
     rm -rf "$dir"
@@ -84,7 +98,7 @@ make_set() {
             echo "# file's interpolateboundary says, boundary_from=default means no tag, so edge-only)"
         fi
         printf '# fixture\tscheme\tboundary\tlevel\tinput'
-        [ "$kind" = tagged ] && printf '\tboundary_from'
+        [ "$kind" != untagged ] && printf '\tboundary_from'
         printf '\n'
     } >"$manifest"
 
@@ -92,8 +106,10 @@ make_set() {
     if [ "$kind" = untagged ]; then
         inputs=$(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/bilinear_*.obj \
                     tests/meshes/osd/loop_*.obj tests/meshes/own_*.obj | sort)
-    else
+    elif [ "$kind" = tagged ]; then
         inputs=$(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj | sort)
+    else
+        inputs=$(ls tests/meshes/osd_nonmanifold/*.obj | sort)
     fi
 
     local input name scheme modes mode from level out flags keep3 size
@@ -142,3 +158,4 @@ make_set() {
 
 make_set tests/fixtures/osd untagged
 make_set tests/fixtures/osd_tagged tagged
+make_set tests/fixtures/osd_nonmanifold nonmanifold
