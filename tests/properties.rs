@@ -157,9 +157,9 @@ fn build(spec: &Spec) -> PolyMesh {
     }
     let mut positions = Vec::with_capacity(3 * points.len());
     for (v, p) in points.iter().enumerate() {
-        for k in 0..3 {
+        for (k, (&x, &offset)) in p.iter().zip(&spec.offset).enumerate() {
             let jitter = spec.noise[(3 * v + k) % spec.noise.len()];
-            positions.push((p[k] + jitter) * spec.scale + spec.offset[k]);
+            positions.push((x + jitter) * spec.scale + offset);
         }
     }
     let mut indices = Vec::new();
