@@ -501,7 +501,6 @@ fn doo_sabin_twice_on_a_mesh_without_faces() {
 /// mesh: face 5 has 2 vertices"). The same happens at any interior vertex of valence 2. Doo-Sabin
 /// should refuse such a vertex by name (`Unsupported`) or leave the 2-sided face out.
 #[test]
-#[ignore = "needs library change: Doo-Sabin makes 2-sided faces at interior vertices of valence 2"]
 fn doo_sabin_at_a_vertex_of_valence_two() {
     let pillow = PolyMesh {
         positions: vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
@@ -527,7 +526,6 @@ fn doo_sabin_at_a_vertex_of_valence_two() {
 /// small and the memory guard can let through more faces than `max_faces`. One triangle,
 /// Doo-Sabin then Catmull-Clark: predicted 18 faces, made 24.
 #[test]
-#[ignore = "needs library change: dqq::child_counts must count boundary vertex faces' Chaikin corners"]
 fn prediction_after_doo_sabin_on_an_open_mesh() {
     let triangle = PolyMesh {
         positions: vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0],

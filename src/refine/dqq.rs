@@ -22,14 +22,12 @@ pub enum DualBoundary {
     Chaikin,
 }
 
-/// Child `[vertices, edges, half-edges, cells]` of a closed mesh; an upper bound otherwise.
+/// Upper bounds of the child `[vertices, edges, half-edges, cells]`, exact on closed meshes
+/// but for the edges. Face faces have `H` half-edges, edge faces `4E`, vertex faces `H` plus two
+/// Chaikin corners per boundary vertex (at most `2V`); every edge has at least one half-edge.
 pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [u64; 4] {
-    [
-        3 * half_edges,
-        2 * half_edges + 2 * edges,
-        2 * half_edges + 4 * edges,
-        cells + edges + vertices,
-    ]
+    let child_half_edges = 2 * half_edges + 4 * edges + 2 * vertices;
+    [3 * half_edges, child_half_edges, child_half_edges, cells + edges + vertices]
 }
 
 /// Refuses meshes the dual split cannot take.
@@ -125,6 +123,12 @@ pub fn refine<R: CornerRules>(mesh: &HalfEdgeMesh, rules: &R, boundary: DualBoun
                 break;
             }
             h = across;
+        }
+        if indices.len() - first < 3 {
+            // An interior vertex of valence 2: its face would have two sides. Leaving it out
+            // lets the two edge faces beside it share the edge between its two corners.
+            indices.truncate(first);
+            continue;
         }
         face_sizes.push((indices.len() - first) as u32);
     }
