@@ -298,8 +298,8 @@ pub fn subdivide_mesh(base: HalfEdgeMesh, options: &Options) -> Result<PolyMesh>
 
 /// Subdivides an already built half-edge mesh with tags; see [`subdivide_with_tags`].
 ///
-/// Without tags, on a mesh without non-manifold edges and with a boundary other than `none`,
-/// every level takes the plain path (no sharpness data at all). Otherwise the levels that
+/// Without tags, on a 2-manifold mesh (no non-manifold edge or vertex) and with a boundary other
+/// than `none`, every level takes the plain path (no sharpness data at all). Otherwise the levels that
 /// follow tags carry one sharpness per edge and vertex and a hole flag per face from level to
 /// level (see [`crate::rules::crease`]).
 pub fn subdivide_mesh_with_tags(
@@ -358,7 +358,7 @@ pub fn subdivide_mesh_with_tags(
             let needed = (level == 0 && user_tags)
                 || (creased
                     && (boundary == Boundary::None
-                        || mesh.non_manifold_edges
+                        || mesh.is_non_manifold()
                         || (tags.smooth_triangles && scheme == Scheme::CatmullClark)));
             if needed {
                 // The user's creases, corners and holes belong to the base mesh; a later level

@@ -42,6 +42,8 @@ pub(super) fn from_faces(
     drop(he_to);
     build_edges(&mut mesh, &out_to);
     put_boundary_half_edges_first(&mut mesh);
+    mesh.multi_fan_vertices =
+        !mesh.non_manifold_edges && (0..mesh.num_vertices() as u32).any(|v| !mesh.is_single_fan(v));
     Ok(mesh)
 }
 

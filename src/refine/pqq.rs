@@ -192,6 +192,7 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         vertex_half_edges,
         // The halves of a non-manifold edge are non-manifold; inner edges never are.
         non_manifold_edges: mesh.non_manifold_edges,
+        multi_fan_vertices: mesh.multi_fan_vertices,
     }
 }
 

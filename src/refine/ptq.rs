@@ -93,7 +93,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
     }
     let cells = (0..=4 * mesh.num_cells() as u32).map(|c| 3 * c).collect();
     let num_edges = 2 * mesh.num_edges() + 3 * mesh.num_cells();
-    HalfEdgeMesh::from_cells_and_edges(positions, cells, he_from, he_edge, num_edges)
+    let multi_fan = mesh.multi_fan_vertices;
+    HalfEdgeMesh::from_cells_and_edges(positions, cells, he_from, he_edge, num_edges, multi_fan)
 }
 
 /// The child level's tags (see [`crate::rules::crease`]) for `child`, [`child_mesh`] of `mesh`:

@@ -10,18 +10,17 @@
 //! - boundary or non-manifold edge point: the midpoint (the edge is a sharp crease);
 //! - interior vertex of valence `n`: `(n - 2)/n · v + 1/n² · Σ neighbours + 1/n² · Σ face points`,
 //!   the same as seed `003`'s `(n-3)/n · v + 1/n · F + 2/n · R`;
-//! - boundary vertex: see [`Boundary`];
-//! - a vertex whose faces form several fans (non-manifold) stays where it is, as in OpenSubdiv.
+//! - boundary vertex: see [`Boundary`].
 //!
-//! [`CatmullClark`] is the untagged rule set: it needs no sharpness data and runs on meshes
-//! without non-manifold edges. [`CreasedCatmullClark`] adds the crease rules of
-//! [`super::crease`] (sharp and semi-sharp edges and vertices, non-manifold edges, OpenSubdiv's
+//! [`CatmullClark`] is the untagged rule set: it needs no sharpness data and is meant for
+//! 2-manifold meshes. [`CreasedCatmullClark`] adds the crease rules of [`super::crease`] (sharp
+//! and semi-sharp edges and vertices, non-manifold edges and vertices, OpenSubdiv's
 //! smooth-triangle edge rule); [`crate::scheme`] picks it when there are tags, when the boundary
-//! is `none`, or when the mesh has non-manifold edges.
+//! is `none`, or when the mesh is not a 2-manifold.
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
 use super::{
-    boundary_vertex_rule, centroid, edge_midpoint, fan, smooth_edge, vec3, QuadSplitRules,
+    boundary_vertex_rule, centroid, edge_midpoint, ring, smooth_edge, vec3, QuadSplitRules,
 };
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
@@ -55,11 +54,8 @@ impl QuadSplitRules for CatmullClark {
     fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
         let v = vec3(mesh.positions[vertex as usize]);
         let mut faces = Vec3::ZERO;
-        let Some(ring) =
-            fan(mesh, vertex, |h| faces += vec3(face_points[mesh.he_cell[h as usize] as usize]))
-        else {
-            return v; // several fans: a non-manifold corner
-        };
+        let ring =
+            ring(mesh, vertex, |h| faces += vec3(face_points[mesh.he_cell[h as usize] as usize]));
         if ring.faces == 0 {
             return v;
         }

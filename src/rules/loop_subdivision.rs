@@ -4,13 +4,13 @@
 //! - boundary or non-manifold edge point: the midpoint;
 //! - interior vertex of valence `n`: `(1 - nβ) v + β Σ neighbours`,
 //!   `β = (5/8 - (3/8 + cos(2π/n)/4)²) / n` (1/16 at `n = 6`);
-//! - boundary vertex: see [`Boundary`];
-//! - a vertex whose faces form several fans (non-manifold) stays where it is, as in OpenSubdiv.
+//! - boundary vertex: see [`Boundary`].
 //!
-//! [`CreasedLoop`] adds creases, corners and non-manifold edges (see [`super::crease`]).
+//! [`Loop`] is meant for 2-manifold meshes; [`CreasedLoop`] adds creases, corners and
+//! non-manifold edges and vertices (see [`super::crease`]).
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
-use super::{boundary_vertex_rule, edge_midpoint, fan, smooth_edge, vec3, TriSplitRules};
+use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, vec3, TriSplitRules};
 use crate::mesh::HalfEdgeMesh;
 use crate::scheme::Boundary;
 use glam::Vec3;
@@ -48,9 +48,7 @@ impl TriSplitRules for Loop {
     #[inline]
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
         let v = vec3(mesh.positions[vertex as usize]);
-        let Some(ring) = fan(mesh, vertex, |_| {}) else {
-            return v; // several fans: a non-manifold corner
-        };
+        let ring = ring(mesh, vertex, |_| {});
         if ring.faces == 0 {
             return v;
         }

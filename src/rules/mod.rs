@@ -129,11 +129,9 @@ pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u3
 /// half-edge `h` leaving it. `None` when the walk does not visit every face at the vertex exactly
 /// once in one fan: the faces form several fans (a non-manifold vertex, which the primal schemes
 /// keep in place as OpenSubdiv does), or a non-manifold edge sends the walk astray. For a vertex
-/// without faces, an empty ring.
-///
-/// The walk reads what [`ring`] reads, so it costs no more; the untagged Catmull-Clark and Loop
-/// rules use it. It relies on the mesh convention that a boundary half-edge leaves a vertex first
-/// in its list.
+/// without faces, an empty ring. It relies on the mesh convention that a boundary half-edge
+/// leaves a vertex first in its list. The crease rules use it; the plain rules use [`ring`],
+/// whose loads do not wait on each other, on meshes known to be 2-manifold.
 #[inline]
 pub(crate) fn fan(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u32)) -> Option<Ring> {
     let out = mesh.out_half_edges(vertex);
