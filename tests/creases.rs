@@ -103,6 +103,8 @@ fn malformed_tags_name_their_line() {
         ("t creasemethod 0/0/1 sharpest\n", "unknown value 'sharpest'"),
         ("t smoothtriangles 0/0/1 yes\n", "unknown value 'yes'"),
         ("t crease 2-1-0 0 1 1.0\n", "are not 'nint/nfloat/nstring'"),
+        ("t crease 4294967295/4294967295/4294967295 0\n", "has 1 values"),
+        ("t crease 18446744073709551615/1/0 0 1 1\n", "are not 'nint/nfloat/nstring'"),
         ("t crease\n", "needs its counts"),
         ("t\n", "needs a tag name"),
     ];
@@ -409,4 +411,58 @@ fn command_line_uses_tags_unless_told_not_to() {
         subsurf_cli(&["--ignore-tags", input.to_str().unwrap(), "-o", output.to_str().unwrap()]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Pseudo-random tags (a fixed-seed generator) on every sample mesh, both methods, every
+/// boundary rule, levels 1 to 3: no error, no NaN, hole faces gone.
+#[test]
+fn random_tags_never_give_nan() {
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move |n: u32| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n as u64) as u32
+    };
+    let meshes = [cube(), grid(3, 3), subsurf::shapes::torus(5, 4, 2.0, 0.5)];
+    for (m, quads) in meshes.iter().enumerate() {
+        for (scheme, mesh) in
+            [(Scheme::CatmullClark, quads.clone()), (Scheme::Loop, triangulate_quads(quads))]
+        {
+            let he = subsurf::HalfEdgeMesh::from_poly(&mesh).unwrap();
+            for round in 0..8 {
+                let sharpness = |k: u32| [0.0, 0.3, 1.0, 1.7, 2.5, 10.0, 25.0][k as usize];
+                let mut tags = Tags::default();
+                for _ in 0..next(2 * he.num_edges() as u32) {
+                    let e = next(he.num_edges() as u32);
+                    let [a, b] = he.edge_vertices(e).unwrap();
+                    tags.creases.push(crease(a, b, sharpness(next(7))));
+                }
+                for _ in 0..next(4) {
+                    let vertex = next(he.num_vertices() as u32);
+                    tags.corners.push(Corner { vertex, sharpness: sharpness(next(7)) });
+                }
+                if round % 2 == 1 {
+                    tags.holes.push(next(he.num_cells() as u32));
+                }
+                tags.crease_method =
+                    if round % 4 < 2 { CreaseMethod::Uniform } else { CreaseMethod::Chaikin };
+                tags.smooth_triangles = round % 3 == 0;
+                for &boundary in Boundary::ALL {
+                    for levels in 1..=3 {
+                        let options = Options::new(scheme, levels).with_boundary(boundary);
+                        let out = subdivide_with_tags(&mesh, &options, &tags)
+                            .unwrap_or_else(|e| panic!("mesh {m} {scheme} {boundary}: {e}"));
+                        assert!(out.positions.iter().all(|x| x.is_finite()), "mesh {m} {scheme}");
+                        let plain = subdivide(&mesh, &options).unwrap();
+                        assert_eq!(out.num_vertices(), plain.num_vertices());
+                        // (Under 'none', infinitely sharp boundary creases keep faces.)
+                        if boundary != Boundary::None {
+                            assert!(out.num_faces() <= plain.num_faces());
+                        }
+                    }
+                }
+            }
+        }
+    }
 }

@@ -155,7 +155,8 @@ fn parse_tag<'a>(
     let counts = words.next().ok_or_else(|| {
         obj_error(line, format!("tag '{name}' needs its counts 'nint/nfloat/nstring'"))
     })?;
-    let parsed: Vec<Option<usize>> = counts.split('/').map(|c| c.parse().ok()).collect();
+    // Counts as u32 (summed in u64): no count from a file can overflow anything.
+    let parsed: Vec<Option<u32>> = counts.split('/').map(|c| c.parse().ok()).collect();
     let [Some(ni), Some(nf), Some(ns)] = parsed[..] else {
         return Err(obj_error(
             line,
@@ -163,16 +164,17 @@ fn parse_tag<'a>(
         ));
     };
     let values: Vec<&str> = words.collect();
-    if values.len() != ni + nf + ns {
+    let declared = ni as u64 + nf as u64 + ns as u64;
+    if values.len() as u64 != declared {
         return Err(obj_error(
             line,
             format!(
-                "tag '{name}' declares {ni} integers, {nf} floats and {ns} strings ({} values) but has {} values",
-                ni + nf + ns,
+                "tag '{name}' declares {ni} integers, {nf} floats and {ns} strings ({declared} values) but has {} values",
                 values.len()
             ),
         ));
     }
+    let (ni, nf) = (ni as usize, nf as usize);
     let ints = values[..ni]
         .iter()
         .map(|w| {
