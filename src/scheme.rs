@@ -96,8 +96,9 @@ pub enum Boundary {
     /// (OBJ `interpolateboundary 0`): the faces that touch a boundary vertex become holes, so
     /// they and their descendants are left out of the result (their vertices stay, placed as
     /// under `EdgeOnly`). Doo-Sabin leaves out the faces of boundary edges and vertices, so the
-    /// surface retracts from the boundary, as CGAL's Doo-Sabin does. Bilinear and midpoint ignore
-    /// it; Quad/Triangle and √3 refuse it.
+    /// surface retracts from the boundary, as CGAL's Doo-Sabin does. Bilinear and midpoint alone
+    /// ignore it (before a Catmull-Clark or Loop level of a list they carry its holes);
+    /// Quad/Triangle and √3 refuse it.
     None,
 }
 
@@ -164,6 +165,14 @@ impl fmt::Display for Boundary {
 /// the level before it.
 pub const DEFAULT_MAX_FACES: u64 = 1 << 24;
 
+/// The default byte guard: 1 GiB for the result's arrays (positions, indices, face sizes and a
+/// triangle list), which leaves room in a 4 GiB wasm32 memory for the level it is made from.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
+/// The most levels one call accepts: beyond any guard for a mesh with faces, and it bounds the
+/// work on meshes without any.
+pub const MAX_LEVELS: usize = 32;
+
 /// How to subdivide.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Options {
@@ -172,6 +181,9 @@ pub struct Options {
     pub boundary: Boundary,
     /// Refuse, before any work, when the last level would have more faces than this.
     pub max_faces: u64,
+    /// Refuse, before any work, when the result's arrays would take more bytes than this
+    /// (see [`Prediction::bytes`]).
+    pub max_bytes: u64,
 }
 
 impl Default for Options {
@@ -180,6 +192,7 @@ impl Default for Options {
             schemes: vec![Scheme::CatmullClark],
             boundary: Boundary::default(),
             max_faces: DEFAULT_MAX_FACES,
+            max_bytes: DEFAULT_MAX_BYTES,
         }
     }
 }
@@ -200,9 +213,8 @@ impl Options {
     }
 }
 
-/// Predicted `(vertices, faces)` after all levels, saturating instead of overflowing. Exact for
-/// the primal schemes; for Doo-Sabin an upper bound.
-pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
+/// The predicted size after all levels of `options`, from the counts formulas of each level.
+pub fn predict(mesh: &HalfEdgeMesh, options: &Options) -> Prediction {
     let mut counts =
         [mesh.num_vertices(), mesh.num_edges(), mesh.num_half_edges(), mesh.num_cells()]
             .map(|n| n as u64);
@@ -216,17 +228,77 @@ pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
                 sqrt3::child_counts(v, e, h, f, sqrt3_refines_boundary(&options.schemes, level))
             }
             Scheme::QuadTriangle => {
-                // Upper bound: as if every face were a triangle (four children, no centroid)
-                // and as if none were (a centroid each); exact counts need the face sizes.
-                let [v2, f2] = quad_tri::child_counts(v, e, h, f, 0);
-                [v2, 2 * e + h, 4 * h, f2.max(4 * f)]
+                // Upper bound: T triangles make 4T faces and the other faces H - 3T, so H + T
+                // <= H + F faces, and a centroid for each non-triangle, at most F.
+                [v + e + f, 2 * e + h, 4 * h, h + f]
             }
         };
-        if counts[3] > u64::MAX / 64 {
-            break;
+        if counts.iter().any(|&c| c > u64::MAX / 64) {
+            // Saturate: a level grows every count less than 64-fold, so nothing overflowed yet,
+            // and no guard lets this through.
+            return Prediction { vertices: u64::MAX, faces: u64::MAX, corners: u64::MAX };
         }
     }
-    (counts[0], counts[3])
+    Prediction { vertices: counts[0], faces: counts[3], corners: counts[2] }
+}
+
+/// The predicted size of a result, before any work: exact for the primal schemes, an upper
+/// bound for Doo-Sabin, √3 and Quad/Triangle; every count is `u64::MAX` when it would not fit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Prediction {
+    pub vertices: u64,
+    pub faces: u64,
+    /// Face corners: the length of the index array.
+    pub corners: u64,
+}
+
+impl Prediction {
+    /// Bytes of the result's arrays as the JS API returns them: 12 per vertex, 4 per index,
+    /// 4 per face size and 12 per triangle of the fan triangulation (corners - 2 per face).
+    pub fn bytes(&self) -> u64 {
+        let triangles = self.corners.saturating_sub(2 * self.faces);
+        12u64
+            .saturating_mul(self.vertices)
+            .saturating_add(4u64.saturating_mul(self.corners))
+            .saturating_add(4u64.saturating_mul(self.faces))
+            .saturating_add(12u64.saturating_mul(triangles))
+    }
+}
+
+/// Refuses, before any allocation, a call whose result would break a guard of `options`.
+pub fn check_guards(mesh: &HalfEdgeMesh, options: &Options) -> Result<()> {
+    let levels = options.levels();
+    if levels > MAX_LEVELS {
+        return Err(Error::InvalidOption(format!(
+            "{levels} levels is more than the {MAX_LEVELS} subsurf accepts; every level multiplies the faces by about four"
+        )));
+    }
+    let predicted = predict(mesh, options);
+    if predicted.faces == u64::MAX {
+        return Err(Error::TooLarge(format!(
+            "{levels} level(s) would make more faces than a 64-bit count holds, beyond any maxFaces (CLI --max-faces); use fewer levels"
+        )));
+    }
+    if predicted.faces > options.max_faces {
+        return Err(Error::TooLarge(format!(
+            "{levels} level(s) would make {} faces, more than the limit of {}; use fewer levels or raise maxFaces (CLI --max-faces)",
+            predicted.faces, options.max_faces
+        )));
+    }
+    let bytes = predicted.bytes();
+    if bytes > options.max_bytes {
+        return Err(Error::TooLarge(format!(
+            "{levels} level(s) would make a result of {bytes} bytes (positions, indices, face sizes and triangles), more than the limit of {} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)",
+            options.max_bytes
+        )));
+    }
+    Ok(())
+}
+
+/// Predicted `(vertices, faces)` after all levels; see [`predict`].
+pub fn predict_counts(mesh: &HalfEdgeMesh, options: &Options) -> (u64, u64) {
+    let p = predict(mesh, options);
+    (p.vertices, p.faces)
 }
 
 /// √3 splits boundary edges on every second level of a run of √3 levels, starting with the
@@ -307,14 +379,7 @@ pub fn subdivide_mesh_with_tags(
     options: &Options,
     tags: &Tags,
 ) -> Result<PolyMesh> {
-    let (_, faces) = predict_counts(&base, options);
-    if faces > options.max_faces {
-        return Err(Error::TooLarge(format!(
-            "{} level(s) would make {faces} faces, more than the limit of {}; use fewer levels or raise maxFaces (CLI --max-faces)",
-            options.levels(),
-            options.max_faces
-        )));
-    }
+    check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
     let user_tags = !tags.is_trivial();
@@ -351,15 +416,22 @@ pub fn subdivide_mesh_with_tags(
     for (level, &scheme) in options.schemes.iter().enumerate() {
         check_scheme(&mesh, scheme, boundary, level)?;
         let last = level + 1 == levels;
-        let creased = matches!(scheme, Scheme::CatmullClark | Scheme::Loop);
         if level_tags.is_none() && scheme.supports_tags() {
             // The tagged path: for the user's tags (base level), and for what only the crease
-            // rules handle: boundary 'none', non-manifold edges, smooth triangles.
+            // rules handle: boundary 'none', non-manifold input, smooth triangles. Decided for
+            // the run of levels that carry tags from here on (bilinear and midpoint carry them
+            // to a later Catmull-Clark or Loop level), on this level's mesh.
+            let run = options.schemes[level..].iter().take_while(|s| s.supports_tags());
+            let (mut creased, mut catmull_clark) = (false, false);
+            for &s in run {
+                creased |= matches!(s, Scheme::CatmullClark | Scheme::Loop);
+                catmull_clark |= s == Scheme::CatmullClark;
+            }
             let needed = (level == 0 && user_tags)
                 || (creased
                     && (boundary == Boundary::None
                         || mesh.is_non_manifold()
-                        || (tags.smooth_triangles && scheme == Scheme::CatmullClark)));
+                        || (tags.smooth_triangles && catmull_clark)));
             if needed {
                 // The user's creases, corners and holes belong to the base mesh; a later level
                 // (after a scheme that does not carry tags) starts from the options only.
@@ -414,7 +486,8 @@ pub fn subdivide_mesh_with_tags(
         };
         level_tags = next_tags;
         mesh = match child {
-            Level::Poly(poly) if last => return Ok(poly),
+            // A mesh without vertices (Doo-Sabin of a mesh without faces) stays empty.
+            Level::Poly(poly) if last || poly.positions.is_empty() => return Ok(poly),
             Level::Poly(poly) => HalfEdgeMesh::from_poly(&poly)?,
             Level::Mesh(mesh) => mesh,
         };

@@ -62,6 +62,8 @@ export interface SubdivideOptions {
   boundary?: BoundaryRule;
   /** Refuse, before any work, when the result would have more faces than this. Default 16777216. */
   maxFaces?: number;
+  /** Refuse, before any work, when the result's arrays would take more bytes. Default 1073741824 (1 GiB). */
+  maxBytes?: number;
 }
 
 /** A polygon mesh as `readObj` returns it. */
@@ -79,7 +81,7 @@ export interface SubdivideResult extends PolygonMesh {
 "#;
 
 /// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
-const OPTION_KEYS: [&str; 4] = ["scheme", "levels", "boundary", "maxFaces"];
+const OPTION_KEYS: [&str; 5] = ["scheme", "levels", "boundary", "maxFaces", "maxBytes"];
 
 /// Mesh fields read from the input object.
 const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
@@ -87,10 +89,8 @@ const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
 /// Mesh fields accepted and ignored: the extra output of `subdivide`.
 const IGNORED_MESH_KEYS: [&str; 1] = ["triangles"];
 
-/// The most levels one call accepts. Far beyond any `maxFaces` for a real mesh (a level of a
-/// splitting scheme multiplies the face count by 3 or 4), it only bounds the work and the
-/// per-level list on degenerate inputs.
-pub const MAX_LEVELS: u32 = 32;
+/// The most levels one call accepts (the library's [`scheme::MAX_LEVELS`]).
+pub const MAX_LEVELS: u32 = scheme::MAX_LEVELS as u32;
 
 /// `Number.MAX_SAFE_INTEGER`: the largest whole number a JS number holds exactly.
 const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
@@ -293,12 +293,14 @@ fn read_options(value: &JsValue) -> Result<Options, Error> {
         }
     };
     let boundary = read_boundary(&field("boundary")?)?;
-    let max_faces = read_max_faces(&field("maxFaces")?)?;
+    let max_faces = read_limit(&field("maxFaces")?, "maxFaces")?;
+    let max_bytes = read_limit(&field("maxBytes")?, "maxBytes")?;
     let defaults = Options::default();
     Ok(Options {
         schemes,
         boundary: boundary.unwrap_or(defaults.boundary),
         max_faces: max_faces.unwrap_or(defaults.max_faces),
+        max_bytes: max_bytes.unwrap_or(defaults.max_bytes),
     })
 }
 
@@ -315,14 +317,15 @@ fn read_levels(value: &JsValue) -> Result<Option<u32>, Error> {
     }
 }
 
-fn read_max_faces(value: &JsValue) -> Result<Option<u64>, Error> {
+/// A guard limit (`maxFaces`, `maxBytes`): a whole number from 1 to `MAX_SAFE_INTEGER`.
+fn read_limit(value: &JsValue, name: &str) -> Result<Option<u64>, Error> {
     if value.is_undefined() {
         return Ok(None);
     }
     match value.as_f64() {
         Some(x) if x.fract() == 0.0 && (1.0..=MAX_SAFE_INTEGER).contains(&x) => Ok(Some(x as u64)),
         _ => Err(option_error(format!(
-            "maxFaces must be a whole number from 1 to Number.MAX_SAFE_INTEGER, got {}",
+            "{name} must be a whole number from 1 to Number.MAX_SAFE_INTEGER, got {}",
             describe(value)
         ))),
     }

@@ -466,3 +466,24 @@ fn random_tags_never_give_nan() {
         }
     }
 }
+
+/// Boundary 'none' in a list: the faces at the base mesh's boundary are dropped whether or not
+/// there are other tags, and bilinear carries the holes to the Catmull-Clark level.
+#[test]
+fn boundary_none_in_a_list_is_decided_on_the_base_mesh() {
+    let mesh = grid(4, 4);
+    let options = Options {
+        schemes: vec![Scheme::Bilinear, Scheme::CatmullClark],
+        boundary: Boundary::None,
+        ..Options::default()
+    };
+    let plain = subdivide(&mesh, &options).unwrap();
+    let tagged = subdivide_with_tags(
+        &mesh,
+        &options,
+        &Tags { corners: vec![Corner { vertex: 12, sharpness: 1.0 }], ..Tags::default() },
+    )
+    .unwrap();
+    assert_eq!(plain.num_faces(), 4 * 16, "the four middle faces' grandchildren");
+    assert_eq!(tagged.num_faces(), plain.num_faces());
+}

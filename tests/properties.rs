@@ -482,7 +482,6 @@ fn one_level_of_every_scheme_on_a_mesh_without_faces() {
 /// never gave. It should return the empty mesh again (or refuse with an `Unsupported` message
 /// at level 1), never call a valid input invalid.
 #[test]
-#[ignore = "needs library change: Doo-Sabin twice on a mesh without faces reports 'invalid mesh: positions is empty'"]
 fn doo_sabin_twice_on_a_mesh_without_faces() {
     for schemes in [vec![Scheme::DooSabin; 2], vec![Scheme::DooSabin, Scheme::CatmullClark]] {
         let options = Options { schemes: schemes.clone(), ..Options::default() };
@@ -558,7 +557,6 @@ fn prediction_after_doo_sabin_on_an_open_mesh() {
 /// and a pentagon: predicted 8 faces, made 9; so `max_faces = 8` does not refuse it. An upper
 /// bound is H + F faces and V + E + F vertices.
 #[test]
-#[ignore = "needs library change: predict_counts for quad-triangle must bound H + T faces"]
 fn quad_triangle_prediction_on_a_triangle_and_a_pentagon() {
     let mesh = PolyMesh {
         positions: vec![

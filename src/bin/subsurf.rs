@@ -11,7 +11,7 @@ use subsurf::scheme::{Boundary, Options, Scheme};
 use subsurf::{CreaseMethod, HalfEdgeMesh, Tags};
 
 const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--crease-method M] [--ignore-tags]
-               [--max-faces N] [--stats] INPUT.obj [-o OUTPUT.obj]
+               [--max-faces N] [--max-bytes N] [--stats] INPUT.obj [-o OUTPUT.obj]
 
   --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, sqrt3,
                      bilinear, midpoint;
@@ -23,6 +23,7 @@ const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE]
   --crease-method M  uniform or chaikin; default: the file's 'creasemethod' tag, else uniform
   --ignore-tags      ignore the file's OpenSubdiv 't' tags (creases, corners, holes, ...)
   --max-faces N      refuse when the result would have more faces (default 16777216)
+  --max-bytes N      refuse when the result's arrays would take more bytes (default 1073741824)
   --stats            print counts and timings to stderr
   -o OUTPUT.obj      where to write the result (default: standard output)";
 
@@ -32,6 +33,7 @@ struct Args {
     crease_method: Option<CreaseMethod>,
     ignore_tags: bool,
     max_faces: u64,
+    max_bytes: u64,
     stats: bool,
     input: String,
     output: Option<String>,
@@ -44,6 +46,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         crease_method: None,
         ignore_tags: false,
         max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
+        max_bytes: subsurf::scheme::DEFAULT_MAX_BYTES,
         stats: false,
         input: String::new(),
         output: None,
@@ -61,9 +64,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             }
             "--levels" => {
                 let v = value("--levels")?;
-                levels = Some(v.parse().map_err(|_| {
+                let n: u32 = v.parse().map_err(|_| {
                     format!("--levels '{v}' is not a whole number of levels (0, 1, 2, ...)")
-                })?);
+                })?;
+                let max = subsurf::scheme::MAX_LEVELS;
+                if n as usize > max {
+                    return Err(format!("--levels {n} is more than the {max} subsurf accepts"));
+                }
+                levels = Some(n);
             }
             "--boundary" => {
                 parsed.boundary = Some(value("--boundary")?.parse().map_err(|e| format!("{e}"))?)
@@ -73,6 +81,11 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                     Some(value("--crease-method")?.parse().map_err(|e| format!("{e}"))?)
             }
             "--ignore-tags" => parsed.ignore_tags = true,
+            "--max-bytes" => {
+                let v = value("--max-bytes")?;
+                parsed.max_bytes =
+                    v.parse().map_err(|_| format!("--max-bytes '{v}' is not a whole number"))?;
+            }
             "--max-faces" => {
                 let v = value("--max-faces")?;
                 parsed.max_faces =
@@ -125,7 +138,12 @@ fn run(args: Args) -> Result<(), String> {
     let t = Instant::now();
     let mesh = HalfEdgeMesh::from_poly(&input).map_err(|e| format!("{}: {e}", args.input))?;
     let build_time = t.elapsed();
-    let options = Options { schemes: args.schemes.clone(), boundary, max_faces: args.max_faces };
+    let options = Options {
+        schemes: args.schemes.clone(),
+        boundary,
+        max_faces: args.max_faces,
+        max_bytes: args.max_bytes,
+    };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
     let output = subsurf::scheme::subdivide_mesh_with_tags(mesh, &options, &tags)

@@ -67,15 +67,6 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
                 let start = mesh.indices.len();
                 for word in words {
                     let index = parse_face_index(word, vertex_count, line_no)?;
-                    if mesh.indices[start..].contains(&index) {
-                        return Err(obj_error(
-                            line_no,
-                            format!(
-                                "face uses vertex {} twice; a face must not repeat a vertex",
-                                index + 1
-                            ),
-                        ));
-                    }
                     mesh.indices.push(index);
                 }
                 let n = mesh.indices.len() - start;
@@ -97,6 +88,7 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
         }
     }
     let vertex_count = mesh.num_vertices();
+    let mut last_face = vec![u32::MAX; vertex_count];
     let mut start = 0usize;
     for (f, &n) in mesh.face_sizes.iter().enumerate() {
         let face = &mesh.indices[start..start + n as usize];
@@ -108,6 +100,18 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
                     bad as u64 + 1
                 ),
             ));
+        }
+        for &v in face {
+            // Linear in the face size: the face in which each vertex was last seen.
+            if std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32 {
+                return Err(obj_error(
+                    face_lines[f],
+                    format!(
+                        "face uses vertex {} twice; a face must not repeat a vertex",
+                        v as u64 + 1
+                    ),
+                ));
+            }
         }
         start += n as usize;
     }

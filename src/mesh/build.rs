@@ -85,6 +85,9 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
             indices.len()
         )));
     }
+    // The face in which each vertex was last seen: a linear repeated-vertex check, so that one
+    // face with a million corners costs a million steps, not half a trillion.
+    let mut last_face = vec![u32::MAX; num_vertices];
     let mut start = 0usize;
     for (f, &n) in face_sizes.iter().enumerate() {
         let n = n as usize;
@@ -100,7 +103,7 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
                     num_vertices - 1
                 )));
             }
-            if face[..k].contains(&v) {
+            if std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32 {
                 return Err(Error::mesh(format!(
                     "face {f} uses vertex {v} twice; a face must not repeat a vertex"
                 )));

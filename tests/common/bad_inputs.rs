@@ -584,10 +584,12 @@ pub fn catalogue() -> Vec<Case> {
         .opt("smoothness", Num(0.5))
         .rust(NA(RUST_NO_KEYS))
         .cli(E(&["unknown option '--smoothness'"])),
-        Case::new("options_not_an_object", cube_with(|_, _, _| {}), Stage::Options, &[
-            "options must be an object",
-            "got string 'catmull-clark'",
-        ])
+        Case::new(
+            "options_not_an_object",
+            cube_with(|_, _, _| {}),
+            Stage::Options,
+            &["options must be an object", "got string 'catmull-clark'"],
+        )
         .only_js("only JS passes options as one value")
         .with_options_value(Str("catmull-clark")),
         // -- levels
@@ -631,19 +633,20 @@ pub fn catalogue() -> Vec<Case> {
             "levels_too_many",
             cube_with(|_, _, _| {}),
             Stage::Subdivide,
-            &["33 level(s) would make", "faces", "more than the limit of 16777216", "maxFaces"],
+            &["33 levels is more than the 32 subsurf accepts"],
         )
         .opt("levels", Num(33.0))
         .js(E(&["levels must be a whole number from 0 to 32", "got 33"]))
-        .cli(E(&["33 level(s) would make", "--max-faces"])),
+        .cli(E(&["--levels 33 is more than the 32 subsurf accepts"])),
         Case::new(
             "levels_a_million",
             cube_with(|_, _, _| {}),
             Stage::Subdivide,
-            &["1000000 level(s) would make", "more than the limit"],
+            &["1000000 levels is more than the 32 subsurf accepts"],
         )
         .opt("levels", Num(1e6))
-        .js(E(&["levels must be a whole number from 0 to 32", "got 1000000"])),
+        .js(E(&["levels must be a whole number from 0 to 32", "got 1000000"]))
+        .cli(E(&["--levels 1000000 is more than the 32 subsurf accepts"])),
         Case::new(
             "scheme_list_and_levels_disagree",
             cube_with(|_, _, _| {}),
@@ -701,61 +704,41 @@ pub fn catalogue() -> Vec<Case> {
             .opt("levels", Num(4294967295.0))
             .js(E(&["levels must be a whole number from 0 to 32", "got 4294967295"]))
             .rust(NA("the caller builds the per-level list of Options::schemes"))
-            .cli(Expect::Pending {
-                what: "the CLI builds a list of 4294967295 schemes (4 GiB) before any check, and aborts with 'memory allocation failed' where memory is short; it should refuse more than 32 levels (as the JS API does) before building the list",
-                fragments: &["--levels", "4294967295", "32"],
-            }),
-        Case::new(
-            "levels_beyond_the_prediction",
-            cube_with(|_, _, _| {}),
-            Stage::Subdivide,
-            &[],
-        )
-        .opt("levels", Num(40.0))
-        .opt("maxFaces", Num(1e18))
-        .js(E(&["levels must be a whole number from 0 to 32", "got 40"]))
-        .rust(Expect::Pending {
-            what: "scheme::predict_counts stops multiplying once the face count passes u64::MAX / 64 and returns that smaller count (about 4.3e17 for the cube from 28 levels on), so with max_faces = 1e18 forty levels pass the guard and refinement allocates until memory runs out; the prediction should saturate at u64::MAX",
-            fragments: &["40 level(s) would make", "limit of 1000000000000000000"],
-        })
-        .cli(Expect::Pending {
-            what: "as for the Rust API: --levels 40 --max-faces 1000000000000000000 passes the guard",
-            fragments: &["40 level(s) would make", "limit of 1000000000000000000"],
-        }),
-        Case::new(
-            "max_bytes_exceeded",
-            cube_with(|_, _, _| {}),
-            Stage::Subdivide,
-            &[],
-        )
-        .opt("levels", Num(3.0))
-        .opt("maxBytes", Num(1000.0))
-        .rust(Expect::Pending {
-            what: "Options::max_bytes (the predicted output size in bytes, checked before any allocation like max_faces)",
-            fragments: &["bytes", "1000", "maxBytes"],
-        })
-        .js(Expect::Pending {
-            what: "a maxBytes option: refuse when the predicted output (positions + indices + faceSizes + triangles) exceeds it, naming the predicted bytes and maxBytes",
-            fragments: &["bytes", "1000", "maxBytes"],
-        })
-        .cli(Expect::Pending {
-            what: "a --max-bytes N flag, refused like --max-faces with the predicted bytes",
-            fragments: &["bytes", "1000", "--max-bytes"],
-        }),
-        Case::new(
-            "result_beyond_wasm_memory",
-            cube_with(|_, _, _| {}),
-            Stage::Subdivide,
-            &[],
-        )
-        .opt("levels", Num(16.0))
-        .opt("maxFaces", Num(9_007_199_254_740_991.0))
-        .rust(NA("native memory is not limited to 4 GiB"))
-        .cli(NA("native memory is not limited to 4 GiB"))
-        .js(Expect::Pending {
-            what: "refuse before any work a result whose predicted bytes exceed what wasm32 memory (4 GiB) can hold, even when maxFaces allows it; today the call grows memory until allocation fails and the module traps",
-            fragments: &["bytes", "4 GiB"],
-        }),
+            .cli(E(&["--levels", "4294967295", "32"])),
+        Case::new("levels_beyond_the_prediction", cube_with(|_, _, _| {}), Stage::Subdivide, &[])
+            .opt("levels", Num(40.0))
+            .opt("maxFaces", Num(1e18))
+            .js(E(&["levels must be a whole number from 0 to 32", "got 40"]))
+            .rust(E(&["40 levels is more than the 32 subsurf accepts"]))
+            .cli(E(&["--levels 40 is more than the 32 subsurf accepts"])),
+        Case::new("max_bytes_exceeded", cube_with(|_, _, _| {}), Stage::Subdivide, &[])
+            .opt("levels", Num(3.0))
+            .opt("maxBytes", Num(1000.0))
+            .rust(E(&[
+                "3 level(s) would make a result of 21528 bytes",
+                "limit of 1000 bytes",
+                "maxBytes",
+            ]))
+            .js(E(&[
+                "3 level(s) would make a result of 21528 bytes",
+                "limit of 1000 bytes",
+                "maxBytes",
+            ]))
+            .cli(E(&[
+                "3 level(s) would make a result of 21528 bytes",
+                "limit of 1000 bytes",
+                "--max-bytes",
+            ])),
+        Case::new("result_beyond_wasm_memory", cube_with(|_, _, _| {}), Stage::Subdivide, &[])
+            .opt("levels", Num(16.0))
+            .opt("maxFaces", Num(9_007_199_254_740_991.0))
+            .rust(NA("native memory is not limited to 4 GiB"))
+            .cli(NA("native memory is not limited to 4 GiB"))
+            .js(E(&[
+                "16 level(s) would make a result of",
+                "limit of 1073741824 bytes",
+                "maxBytes",
+            ])),
         // -- JS mesh objects
         Case::new(
             "indices_as_float32array",

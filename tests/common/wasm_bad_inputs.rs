@@ -158,7 +158,7 @@ fn bad_input_catalogue_through_the_js_api() {
         }
     }
     assert!(ran >= 40, "only {ran} catalogue cases ran through the JS API");
-    assert_eq!(pending, ["max_bytes_exceeded", "result_beyond_wasm_memory"], "pending JS cases");
+    assert!(pending.is_empty(), "pending JS cases: {pending:?}");
 }
 
 /// The guard refuses from the prediction, before any work: the message gives the predicted

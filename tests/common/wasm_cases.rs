@@ -269,7 +269,7 @@ fn scheme_and_boundary_names_are_listed() {
     assert!(names.iter().any(|n| n == "catmull-clark"));
     let rules: Vec<String> =
         subsurf::wasm::boundary_rules().iter().map(|v| v.as_string().unwrap()).collect();
-    assert_eq!(rules, ["edge-and-corner", "edge-only", "fixed", "average"]);
+    assert_eq!(rules, ["edge-and-corner", "edge-only", "fixed", "average", "none"]);
     // Every listed name is accepted.
     for name in names
         .iter()

@@ -4,7 +4,7 @@
 use super::*;
 
 fn run(mesh: &JsValue, scheme: JsValue, levels_: f64) -> JsValue {
-    ok(subdivide(mesh, &object(&[("scheme", scheme), ("levels", levels(levels_))])))
+    ok(subdivide(mesh, &object(&[("scheme", scheme), ("levels", JsValue::from_f64(levels_))])))
 }
 
 fn name(s: &str) -> JsValue {
