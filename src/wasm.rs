@@ -17,6 +17,7 @@ use crate::error::Error;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::scheme::{self, Boundary, Options, Scheme};
+use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
@@ -64,6 +65,16 @@ export interface SubdivideOptions {
   maxFaces?: number;
   /** Refuse, before any work, when the result's arrays would take more bytes. Default 1073741824 (1 GiB). */
   maxBytes?: number;
+  /** Sharp edges (Catmull-Clark and Loop): vertex pairs, and one sharpness per pair or one for all (10 = infinitely sharp). */
+  creases?: { edges: Uint32Array; sharpness: Float32Array };
+  /** Sharp vertices: vertex indices, and one sharpness per vertex or one for all. */
+  corners?: { vertices: Uint32Array; sharpness: Float32Array };
+  /** Faces left out of the result (they still shape their neighbours). */
+  holes?: Uint32Array;
+  /** How semi-sharp creases decay from level to level. Default 'uniform'. */
+  creaseMethod?: 'uniform' | 'chaikin';
+  /** Catmull-Clark: OpenSubdiv's smooth-triangle rule. Default false. */
+  smoothTriangles?: boolean;
 }
 
 /** A polygon mesh as `readObj` returns it. */
@@ -81,7 +92,18 @@ export interface SubdivideResult extends PolygonMesh {
 "#;
 
 /// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
-const OPTION_KEYS: [&str; 5] = ["scheme", "levels", "boundary", "maxFaces", "maxBytes"];
+const OPTION_KEYS: [&str; 10] = [
+    "scheme",
+    "levels",
+    "boundary",
+    "maxFaces",
+    "maxBytes",
+    "creases",
+    "corners",
+    "holes",
+    "creaseMethod",
+    "smoothTriangles",
+];
 
 /// Mesh fields read from the input object.
 const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
@@ -111,9 +133,9 @@ pub fn subdivide(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
 ) -> JsResult<JsValue> {
-    let options = read_options(options).map_err(js_error)?;
+    let (options, tags) = read_options(options).map_err(js_error)?;
     let mesh = read_mesh(mesh).map_err(js_error)?;
-    let refined = scheme::subdivide(&mesh, &options).map_err(js_error)?;
+    let refined = scheme::subdivide_with_tags(&mesh, &options, &tags).map_err(js_error)?;
     let triangles = refined.triangles();
     mesh_object(&refined, Some(&triangles))
 }
@@ -207,7 +229,7 @@ pub fn predict_counts(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
 ) -> JsResult<JsValue> {
-    let options = read_options(options).map_err(js_error)?;
+    let (options, _) = read_options(options).map_err(js_error)?;
     let mesh = read_mesh(mesh).map_err(js_error)?;
     let base = HalfEdgeMesh::from_poly(&mesh).map_err(js_error)?;
     let levels = options.levels();
@@ -256,9 +278,9 @@ fn option_error(message: String) -> Error {
     Error::InvalidOption(message)
 }
 
-fn read_options(value: &JsValue) -> Result<Options, Error> {
+fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
     if value.is_undefined() || value.is_null() {
-        return Ok(Options::default());
+        return Ok((Options::default(), Tags::default()));
     }
     if !value.is_object() || is_array(value) {
         return Err(option_error(format!(
@@ -296,12 +318,119 @@ fn read_options(value: &JsValue) -> Result<Options, Error> {
     let max_faces = read_limit(&field("maxFaces")?, "maxFaces")?;
     let max_bytes = read_limit(&field("maxBytes")?, "maxBytes")?;
     let defaults = Options::default();
-    Ok(Options {
+    let options = Options {
         schemes,
         boundary: boundary.unwrap_or(defaults.boundary),
         max_faces: max_faces.unwrap_or(defaults.max_faces),
         max_bytes: max_bytes.unwrap_or(defaults.max_bytes),
-    })
+    };
+    Ok((options, read_tags(&field)?))
+}
+
+/// The tag options: `creases`, `corners`, `holes`, `creaseMethod`, `smoothTriangles`.
+fn read_tags(field: &dyn Fn(&str) -> Result<JsValue, Error>) -> Result<Tags, Error> {
+    let mut tags = Tags::default();
+    let creases = field("creases")?;
+    if !creases.is_undefined() {
+        let (pairs, sharpness) = read_sharpness(&creases, "creases", "edges")?;
+        if pairs.len() % 2 != 0 {
+            return Err(option_error(format!(
+                "creases.edges has {} entries; give vertex pairs, two entries per edge",
+                pairs.len()
+            )));
+        }
+        let count = pairs.len() / 2;
+        let value = per_item(&sharpness, count, "creases")?;
+        tags.creases = (0..count)
+            .map(|i| Crease { vertices: [pairs[2 * i], pairs[2 * i + 1]], sharpness: value(i) })
+            .collect();
+    }
+    let corners = field("corners")?;
+    if !corners.is_undefined() {
+        let (vertices, sharpness) = read_sharpness(&corners, "corners", "vertices")?;
+        let value = per_item(&sharpness, vertices.len(), "corners")?;
+        tags.corners = vertices
+            .iter()
+            .enumerate()
+            .map(|(i, &vertex)| Corner { vertex, sharpness: value(i) })
+            .collect();
+    }
+    let holes = field("holes")?;
+    if !holes.is_undefined() {
+        tags.holes = match typed_array_kind(&holes).as_deref() {
+            Some("Uint32Array") => copy_u32(&holes, "holes")?,
+            _ => return Err(wrong_option_array("holes", "Uint32Array", &holes)),
+        };
+    }
+    let method = field("creaseMethod")?;
+    if !method.is_undefined() {
+        tags.crease_method = match method.as_string().as_deref() {
+            Some("uniform") => CreaseMethod::Uniform,
+            Some("chaikin") => CreaseMethod::Chaikin,
+            _ => {
+                return Err(option_error(format!(
+                    "creaseMethod must be 'uniform' or 'chaikin', got {}",
+                    describe(&method)
+                )))
+            }
+        };
+    }
+    let smooth = field("smoothTriangles")?;
+    if !smooth.is_undefined() {
+        tags.smooth_triangles = smooth.as_bool().ok_or_else(|| {
+            option_error(format!(
+                "smoothTriangles must be true or false, got {}",
+                describe(&smooth)
+            ))
+        })?;
+    }
+    Ok(tags)
+}
+
+/// `{ <items>: Uint32Array, sharpness: Float32Array }` of `creases` or `corners`.
+fn read_sharpness(value: &JsValue, name: &str, items: &str) -> Result<(Vec<u32>, Vec<f32>), Error> {
+    if !value.is_object() || is_array(value) {
+        return Err(option_error(format!(
+            "{name} must be an object {{ {items}: Uint32Array, sharpness: Float32Array }}, got {}",
+            describe(value)
+        )));
+    }
+    let list = get(value, items)?;
+    let list = match typed_array_kind(&list).as_deref() {
+        Some("Uint32Array") => copy_u32(&list, &format!("{name}.{items}"))?,
+        _ => return Err(wrong_option_array(&format!("{name}.{items}"), "Uint32Array", &list)),
+    };
+    let sharpness = get(value, "sharpness")?;
+    let sharpness = match typed_array_kind(&sharpness).as_deref() {
+        Some("Float32Array") => copy_f32(&sharpness, &format!("{name}.sharpness"))?,
+        _ => {
+            return Err(wrong_option_array(
+                &format!("{name}.sharpness"),
+                "Float32Array",
+                &sharpness,
+            ))
+        }
+    };
+    Ok((list, sharpness))
+}
+
+/// One sharpness per item, or one for all of them.
+fn per_item<'a>(
+    sharpness: &'a [f32],
+    count: usize,
+    name: &str,
+) -> Result<impl Fn(usize) -> f32 + 'a, Error> {
+    let n = sharpness.len();
+    if n != 1 && n != count {
+        return Err(option_error(format!(
+            "{name}.sharpness has {n} entries for {count} {name}; give one per item or one for all"
+        )));
+    }
+    Ok(move |i: usize| sharpness[if n == 1 { 0 } else { i }])
+}
+
+fn wrong_option_array(field: &str, expected: &str, got: &JsValue) -> Error {
+    option_error(format!("options.{field} must be a {expected}, got {}", describe(got)))
 }
 
 fn read_levels(value: &JsValue) -> Result<Option<u32>, Error> {

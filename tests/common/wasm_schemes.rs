@@ -88,3 +88,56 @@ fn triangle_schemes_refuse_quads() {
     let out = run(&cube(), name("catmull-clark"), 1.0);
     assert_eq!(u32s(&out, "faceSizes").len(), 24);
 }
+
+/// Tags through the JS API. Every cube edge infinitely sharp: each corner has three sharp edges,
+/// so OpenSubdiv's corner rule keeps it at (1, 1, 1), and every edge point is a midpoint. A hole
+/// leaves out the four children of face 0. Bad tag options name the option.
+#[wasm_bindgen_test]
+fn creases_corners_and_holes() {
+    let (_, indices, _) = cube_arrays();
+    let mut pairs = Vec::new();
+    for face in indices.chunks_exact(4) {
+        for k in 0..4 {
+            let (a, b) = (face[k], face[(k + 1) % 4]);
+            if a < b {
+                pairs.extend_from_slice(&[a, b]);
+            }
+        }
+    }
+    assert_eq!(pairs.len(), 24, "the cube has 12 edges");
+    let creases = object(&[
+        ("edges", Uint32Array::from(&pairs[..]).into()),
+        ("sharpness", Float32Array::from(&[10.0f32][..]).into()),
+    ]);
+    let out = ok(subdivide(&cube(), &object(&[("creases", creases.clone())])));
+    let positions = f32s(&out, "positions");
+    assert!(has_point(&positions, [1.0, 1.0, 1.0]));
+    assert!(has_point(&positions, [1.0, 1.0, 0.0]), "an edge point is the midpoint");
+
+    let corners = object(&[
+        ("vertices", Uint32Array::from(&[7u32][..]).into()),
+        ("sharpness", Float32Array::from(&[10.0f32][..]).into()),
+    ]);
+    let out = ok(subdivide(&cube(), &object(&[("corners", corners)])));
+    assert!(has_point(&f32s(&out, "positions"), [1.0, 1.0, 1.0]), "vertex 7 is a corner");
+
+    let holes: JsValue = Uint32Array::from(&[0u32][..]).into();
+    let out = ok(subdivide(&cube(), &object(&[("holes", holes)])));
+    assert_eq!(u32s(&out, "faceSizes").len(), 20);
+
+    let bad = object(&[
+        ("edges", Uint32Array::from(&pairs[..]).into()),
+        ("sharpness", Float32Array::from(&[1.0f32, 2.0][..]).into()),
+    ]);
+    assert_mentions(
+        &thrown(subdivide(&cube(), &object(&[("creases", bad)]))),
+        &["creases.sharpness has 2 entries", "12 creases"],
+    );
+    assert_mentions(
+        &thrown(subdivide(&cube(), &object(&[("creaseMethod", name("fast"))]))),
+        &["creaseMethod must be 'uniform' or 'chaikin'"],
+    );
+    let message =
+        thrown(subdivide(&cube(), &object(&[("creases", creases), ("scheme", name("doo-sabin"))])));
+    assert_mentions(&message, &["doo-sabin"]);
+}
