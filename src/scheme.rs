@@ -93,9 +93,9 @@ pub enum Boundary {
     /// A boundary vertex moves to the mean of itself and its boundary edges' midpoints (seed 003).
     Average,
     /// No boundary interpolation. Catmull-Clark and Loop do as OpenSubdiv's `VTX_BOUNDARY_NONE`
-    /// (OBJ `interpolateboundary 0`): the faces that touch a boundary vertex become holes, so
-    /// they and their descendants are left out of the result (their vertices stay, placed as
-    /// under `EdgeOnly`). Doo-Sabin leaves out the faces of boundary edges and vertices, so the
+    /// (OBJ `interpolateboundary 0`): the faces at a vertex with a boundary edge that is not
+    /// tagged infinitely sharp become holes, so they and their descendants are left out of the
+    /// result (their vertices stay, placed as under `EdgeOnly`). Doo-Sabin leaves out the faces of boundary edges and vertices, so the
     /// surface retracts from the boundary, as CGAL's Doo-Sabin does. Bilinear and midpoint alone
     /// ignore it (before a Catmull-Clark or Loop level of a list they carry its holes);
     /// Quad/Triangle and √3 refuse it.
