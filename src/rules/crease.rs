@@ -7,9 +7,10 @@
 //!
 //! Every edge and vertex has a sharpness: 0 smooth, 10 ([`SHARPNESS_INFINITE`]) or more
 //! infinitely sharp, between the two semi-sharp. [`LevelTags::base`] starts from the user's
-//! [`Tags`] and then, as OpenSubdiv's factory does (the first two kinds of corner are not
-//! written into the sharpness array: the vertex rule recognises them at every level, since
-//! their children are the same kind of vertex, which saves a walk around every vertex here):
+//! [`Tags`] and then does as OpenSubdiv's factory does (a vertex with one face, and one whose
+//! faces form several fans around manifold edges, are not written into the sharpness array: the
+//! vertex rule recognises them at every level, since their children are the same kind of vertex,
+//! which saves a walk around every vertex here):
 //!
 //! - boundary edges (one face) and non-manifold edges (three or more faces, or two faces using
 //!   the edge in the same direction) become infinitely sharp, whatever the boundary mode;
@@ -33,7 +34,8 @@
 //! its halves at the next level are sharp, the smooth rule when the edge is smooth.
 //!
 //! **Transitions.** When the rule at the next level differs (some sharpness decays to 0), the
-//! point blends the two: for an edge of sharpness `s < 1`, `s · midpoint + (1 - s) · smooth`; for a
+//! point blends the two: for an edge of sharpness `s` (below 1, except with Chaikin),
+//! `s · midpoint + (1 - s) · smooth`; for a
 //! vertex, `w · parent rule + (1 - w) · child rule`, `w` the mean of the sharpness of the edges
 //! (and the vertex) that are sharp now and smooth at the next level, at most 1.
 //!
