@@ -123,13 +123,7 @@ fn build_vertex_half_edges(
     he_to: &[u32],
     num_vertices: usize,
 ) -> Vec<u32> {
-    let mut offsets = vec![0u32; num_vertices + 1];
-    for &v in &mesh.he_from {
-        offsets[v as usize + 1] += 1;
-    }
-    for v in 0..num_vertices {
-        offsets[v + 1] += offsets[v];
-    }
+    let offsets = bucket_offsets(&mesh.he_from, num_vertices);
     let mut fill = offsets.clone();
     let mut keys = vec![0u64; mesh.he_from.len()];
     for (h, &v) in mesh.he_from.iter().enumerate() {
@@ -263,20 +257,7 @@ pub(crate) fn from_cells_and_edges(
     }
     let mut mesh = HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, ..Default::default() };
 
-    let mut edge_offsets = vec![0u32; num_edges + 1];
-    for &e in &he_edge {
-        edge_offsets[e as usize + 1] += 1;
-    }
-    for e in 0..num_edges {
-        edge_offsets[e + 1] += edge_offsets[e];
-    }
-    let mut fill = edge_offsets.clone();
-    let mut edge_half_edges = vec![0u32; nh];
-    for (h, &e) in he_edge.iter().enumerate() {
-        edge_half_edges[fill[e as usize] as usize] = h as u32;
-        fill[e as usize] += 1;
-    }
-    drop(fill);
+    let (edge_offsets, edge_half_edges) = counting_sort(&he_edge, num_edges);
     let mut he_next_around_edge = vec![0u32; nh];
     let mut edge_vertices = vec![[0u32; 2]; num_edges];
     let mut non_manifold = false;
@@ -299,21 +280,35 @@ pub(crate) fn from_cells_and_edges(
     mesh.non_manifold_edges = non_manifold;
 
     let num_vertices = mesh.positions.len();
-    let mut vertex_offsets = vec![0u32; num_vertices + 1];
-    for &v in &mesh.he_from {
-        vertex_offsets[v as usize + 1] += 1;
-    }
-    for v in 0..num_vertices {
-        vertex_offsets[v + 1] += vertex_offsets[v];
-    }
-    let mut fill = vertex_offsets.clone();
-    let mut vertex_half_edges = vec![0u32; nh];
-    for (h, &v) in mesh.he_from.iter().enumerate() {
-        vertex_half_edges[fill[v as usize] as usize] = h as u32;
-        fill[v as usize] += 1;
-    }
+    let (vertex_offsets, vertex_half_edges) = counting_sort(&mesh.he_from, num_vertices);
     mesh.vertex_offsets = vertex_offsets;
     mesh.vertex_half_edges = vertex_half_edges;
     put_boundary_half_edges_first(&mut mesh);
     mesh
+}
+
+/// Offsets of a counting sort: `offsets[k]..offsets[k + 1]` is where the items whose key is `k`
+/// go; every key must be below `buckets`.
+fn bucket_offsets(keys: &[u32], buckets: usize) -> Vec<u32> {
+    let mut offsets = vec![0u32; buckets + 1];
+    for &k in keys {
+        offsets[k as usize + 1] += 1;
+    }
+    for k in 0..buckets {
+        offsets[k + 1] += offsets[k];
+    }
+    offsets
+}
+
+/// A stable counting sort of the item indices `0..keys.len()` by key: the offsets and the
+/// sorted indices (each bucket in ascending order).
+fn counting_sort(keys: &[u32], buckets: usize) -> (Vec<u32>, Vec<u32>) {
+    let offsets = bucket_offsets(keys, buckets);
+    let mut fill = offsets.clone();
+    let mut sorted = vec![0u32; keys.len()];
+    for (i, &k) in keys.iter().enumerate() {
+        sorted[fill[k as usize] as usize] = i as u32;
+        fill[k as usize] += 1;
+    }
+    (offsets, sorted)
 }
