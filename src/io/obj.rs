@@ -216,7 +216,7 @@ impl RawTag<'_> {
     }
 
     /// Checks the number of integers (`ints` says which counts are fine), floats and strings.
-    fn expect(&self, ints_ok: bool, ints: &str, floats: usize, strings: usize) -> Result<()> {
+    fn check_counts(&self, ints_ok: bool, ints: &str, floats: usize, strings: usize) -> Result<()> {
         if !ints_ok {
             return Err(self.error(format!("needs {ints}, got {}", self.ints.len())));
         }
@@ -269,7 +269,7 @@ fn apply_tags(obj: &mut ObjMesh, raw: &[RawTag]) -> Result<()> {
         match t.name {
             "crease" => {
                 let n = t.ints.len();
-                t.expect(
+                t.check_counts(
                     n >= 2 && n % 2 == 0,
                     "vertex pairs (an even number of integers)",
                     t.floats.len(),
@@ -290,7 +290,7 @@ fn apply_tags(obj: &mut ObjMesh, raw: &[RawTag]) -> Result<()> {
             }
             "corner" => {
                 let n = t.ints.len();
-                t.expect(n >= 1, "one or more vertices", t.floats.len(), 0)?;
+                t.check_counts(n >= 1, "one or more vertices", t.floats.len(), 0)?;
                 let sharpness = t.sharpness(n)?;
                 for (i, &v) in t.ints.iter().enumerate() {
                     let vertex = t.index(v, vertices, "vertex")?;
@@ -298,13 +298,13 @@ fn apply_tags(obj: &mut ObjMesh, raw: &[RawTag]) -> Result<()> {
                 }
             }
             "hole" => {
-                t.expect(!t.ints.is_empty(), "one or more faces", 0, 0)?;
+                t.check_counts(!t.ints.is_empty(), "one or more faces", 0, 0)?;
                 for &f in &t.ints {
                     obj.tags.holes.push(t.index(f, faces, "face")?);
                 }
             }
             "interpolateboundary" => {
-                t.expect(t.ints.len() == 1, "one integer (0, 1 or 2)", 0, 0)?;
+                t.check_counts(t.ints.len() == 1, "one integer (0, 1 or 2)", 0, 0)?;
                 obj.boundary = Some(match t.ints[0] {
                     0 => Boundary::None,
                     1 => Boundary::EdgeAndCorner,
@@ -317,14 +317,14 @@ fn apply_tags(obj: &mut ObjMesh, raw: &[RawTag]) -> Result<()> {
                 });
             }
             "creasemethod" => {
-                t.expect(t.ints.is_empty(), "no integers", 0, 1)?;
+                t.check_counts(t.ints.is_empty(), "no integers", 0, 1)?;
                 obj.tags.crease_method = match t.string(&["normal", "uniform", "chaikin"])? {
                     "chaikin" => CreaseMethod::Chaikin,
                     _ => CreaseMethod::Uniform,
                 };
             }
             "smoothtriangles" => {
-                t.expect(t.ints.is_empty(), "no integers", 0, 1)?;
+                t.check_counts(t.ints.is_empty(), "no integers", 0, 1)?;
                 obj.tags.smooth_triangles = t.string(&["catmark", "smooth"])? == "smooth";
             }
             _ => {}
