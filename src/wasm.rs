@@ -51,6 +51,11 @@ export interface SubdivideMesh {
   faceSizes?: Uint32Array;
   /** Ignored, so that a `SubdivideResult` can be subdivided again. */
   triangles?: Uint32Array;
+  /**
+   * Ignored, so that a `readObj` result can be passed as it is. Tags take effect only as
+   * options: `subdivide(mesh, { ...mesh.tags, levels: 2 })`.
+   */
+  tags?: ObjTags;
 }
 
 /** How to subdivide. Every field is optional. */
@@ -77,11 +82,36 @@ export interface SubdivideOptions {
   smoothTriangles?: boolean;
 }
 
-/** A polygon mesh as `readObj` returns it. */
+/** A polygon mesh with every field present, as `shape` returns it. */
 export interface PolygonMesh {
   positions: Float32Array;
   indices: Uint32Array;
   faceSizes: Uint32Array;
+}
+
+/**
+ * The OpenSubdiv `t` tags of an OBJ file under the names and in the shapes `SubdivideOptions`
+ * takes, so that `subdivide(mesh, { ...mesh.tags, levels: 2 })` honours them (spread them last to
+ * let the file override your options). Indices are 0-based, into the mesh's vertices and faces.
+ */
+export interface ObjTags {
+  /** `t crease` lines: vertex pairs, one sharpness per pair, in file order; empty arrays without any. */
+  creases: { edges: Uint32Array; sharpness: Float32Array };
+  /** `t corner` lines: vertices, one sharpness per vertex, in file order; empty arrays without any. */
+  corners: { vertices: Uint32Array; sharpness: Float32Array };
+  /** `t hole` lines: faces, in file order; empty without any. */
+  holes: Uint32Array;
+  /** `t interpolateboundary` 0, 1 or 2. Absent when the file has no such tag. */
+  boundary?: 'none' | 'edge-and-corner' | 'edge-only';
+  /** `t creasemethod chaikin`. Absent when the file asks for the default, 'uniform' ('normal'), or has no such tag. */
+  creaseMethod?: 'chaikin';
+  /** `t smoothtriangles smooth`. Absent when the file asks for the default (false) or has no such tag. */
+  smoothTriangles?: true;
+}
+
+/** What `readObj` returns: the polygons of an OBJ file and its tags. */
+export interface ObjMesh extends PolygonMesh {
+  tags: ObjTags;
 }
 
 /** The refined mesh: fresh arrays owned by the caller. */
@@ -108,8 +138,8 @@ const OPTION_KEYS: [&str; 10] = [
 /// Mesh fields read from the input object.
 const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
 
-/// Mesh fields accepted and ignored: the extra output of `subdivide`.
-const IGNORED_MESH_KEYS: [&str; 1] = ["triangles"];
+/// Mesh fields accepted and ignored: the extra output of `subdivide` and of `readObj`.
+const IGNORED_MESH_KEYS: [&str; 2] = ["triangles", "tags"];
 
 /// The most levels one call accepts (the library's [`scheme::MAX_LEVELS`]).
 pub const MAX_LEVELS: u32 = scheme::MAX_LEVELS as u32;
@@ -140,8 +170,11 @@ pub fn subdivide(
     mesh_object(&refined, Some(&triangles))
 }
 
-/// Parses the text of a Wavefront OBJ file (`v` and `f` lines; everything else is skipped).
-#[wasm_bindgen(js_name = readObj, unchecked_return_type = "PolygonMesh")]
+/// Parses the text of a Wavefront OBJ file: `v` and `f` lines, and OpenSubdiv's `t` tag lines
+/// (`crease`, `corner`, `hole`, `interpolateboundary`, `creasemethod`, `smoothtriangles`) as
+/// `tags`, in the shapes `subdivide`'s options take. Everything else is skipped. A malformed
+/// line, tag lines included, throws an `Error` naming the line.
+#[wasm_bindgen(js_name = readObj, unchecked_return_type = "ObjMesh")]
 pub fn read_obj(
     #[wasm_bindgen(unchecked_param_type = "string")] text: &JsValue,
 ) -> JsResult<JsValue> {
@@ -152,8 +185,42 @@ pub fn read_obj(
             describe(text)
         ))
     })?;
-    let mesh = io::read_obj(&text).map_err(js_error)?;
-    mesh_object(&mesh, None)
+    let obj = io::read_obj_with_tags(&text).map_err(js_error)?;
+    let object = mesh_object(&obj.mesh, None)?;
+    set_field(&object, "tags", &obj_tags_object(&obj.tags, obj.boundary)?)?;
+    Ok(object)
+}
+
+/// `ObjTags`: the reverse of [`read_tags`] for what an OBJ file can say. The optional fields
+/// appear only when they differ from the option's default, so spreading the tags over the
+/// options never silently resets a choice the file did not make.
+fn obj_tags_object(tags: &Tags, boundary: Option<Boundary>) -> JsResult<JsValue> {
+    let pairs: Vec<u32> = tags.creases.iter().flat_map(|c| c.vertices).collect();
+    let crease_sharpness: Vec<f32> = tags.creases.iter().map(|c| c.sharpness).collect();
+    let vertices: Vec<u32> = tags.corners.iter().map(|c| c.vertex).collect();
+    let corner_sharpness: Vec<f32> = tags.corners.iter().map(|c| c.sharpness).collect();
+
+    let creases = Object::new();
+    set_field(&creases, "edges", &Uint32Array::from(&pairs[..]))?;
+    set_field(&creases, "sharpness", &Float32Array::from(&crease_sharpness[..]))?;
+    let corners = Object::new();
+    set_field(&corners, "vertices", &Uint32Array::from(&vertices[..]))?;
+    set_field(&corners, "sharpness", &Float32Array::from(&corner_sharpness[..]))?;
+
+    let object = Object::new();
+    set_field(&object, "creases", &creases)?;
+    set_field(&object, "corners", &corners)?;
+    set_field(&object, "holes", &Uint32Array::from(&tags.holes[..]))?;
+    if let Some(boundary) = boundary {
+        set_field(&object, "boundary", &JsValue::from_str(boundary.name()))?;
+    }
+    if tags.crease_method != CreaseMethod::default() {
+        set_field(&object, "creaseMethod", &JsValue::from_str(tags.crease_method.name()))?;
+    }
+    if tags.smooth_triangles {
+        set_field(&object, "smoothTriangles", &JsValue::TRUE)?;
+    }
+    Ok(object.into())
 }
 
 /// Writes a polygon mesh as Wavefront OBJ text (`v` and `f` lines, 1-based indices).
@@ -679,18 +746,19 @@ fn is_error(value: &JsValue) -> bool {
 /// A plain object of fresh typed arrays (copies, never views of wasm memory).
 fn mesh_object(mesh: &PolyMesh, triangles: Option<&[u32]>) -> JsResult<JsValue> {
     let object = Object::new();
-    let set = |key: &str, value: JsValue| {
-        Reflect::set(&object, &JsValue::from_str(key), &value)
-            .map(|_| ())
-            .map_err(|_| JsError::new(&format!("could not set result field {key}")))
-    };
-    set("positions", Float32Array::from(&mesh.positions[..]).into())?;
-    set("indices", Uint32Array::from(&mesh.indices[..]).into())?;
-    set("faceSizes", Uint32Array::from(&mesh.face_sizes[..]).into())?;
+    set_field(&object, "positions", &Float32Array::from(&mesh.positions[..]))?;
+    set_field(&object, "indices", &Uint32Array::from(&mesh.indices[..]))?;
+    set_field(&object, "faceSizes", &Uint32Array::from(&mesh.face_sizes[..]))?;
     if let Some(triangles) = triangles {
-        set("triangles", Uint32Array::from(triangles).into())?;
+        set_field(&object, "triangles", &Uint32Array::from(triangles))?;
     }
     Ok(object.into())
+}
+
+fn set_field(object: &JsValue, key: &str, value: &JsValue) -> JsResult<()> {
+    Reflect::set(object, &JsValue::from_str(key), value)
+        .map(|_| ())
+        .map_err(|_| JsError::new(&format!("could not set result field {key}")))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -835,6 +903,28 @@ mod tests {
         let keys = OPTION_KEYS.map(|key| format!(" {key}?: "));
         for text in [schemes, boundaries].iter().chain(&defaults).chain(&keys) {
             assert!(types.contains(text.as_str()), "TypeScript section should contain {text:?}");
+        }
+    }
+
+    /// The keys [`obj_tags_object`] may write. `readObj`'s tags are spread into `subdivide`'s
+    /// options, so every key must be an option, and `ObjTags` must declare each of them.
+    const OBJ_TAG_KEYS: [&str; 6] =
+        ["creases", "corners", "holes", "boundary", "creaseMethod", "smoothTriangles"];
+
+    #[wasm_bindgen_test]
+    fn obj_tag_keys_are_option_keys() {
+        let types = TYPESCRIPT_TYPES.split_whitespace().collect::<Vec<_>>().join(" ");
+        let (start, end) = (
+            types.find("export interface ObjTags {").expect("ObjTags in the TypeScript section"),
+            types.find("export interface ObjMesh ").expect("ObjMesh in the TypeScript section"),
+        );
+        for key in OBJ_TAG_KEYS {
+            assert!(OPTION_KEYS.contains(&key), "{key} is not an option");
+            assert!(types[start..end].contains(&format!(" {key}")), "ObjTags should declare {key}");
+        }
+        let boundaries = ["none", "edge-and-corner", "edge-only"];
+        for name in boundaries {
+            assert!(Boundary::ALL.iter().any(|b| b.name() == name), "{name} is a boundary rule");
         }
     }
 

@@ -461,6 +461,100 @@ fn obj_errors_are_thrown_with_the_line() {
     assert_mentions(&m, &["readObj expects", "string", "got 12"]);
 }
 
+/// The cube of `cube_arrays` as OBJ text (1-based), followed by `tags`.
+fn cube_obj(tags: &str) -> String {
+    let (positions, indices, sizes) = cube_arrays();
+    let mut text = String::new();
+    for p in positions.chunks(3) {
+        text += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    let mut start = 0;
+    for &n in &sizes {
+        let face: Vec<String> =
+            indices[start..start + n as usize].iter().map(|i| (i + 1).to_string()).collect();
+        text += &format!("f {}\n", face.join(" "));
+        start += n as usize;
+    }
+    text + tags
+}
+
+fn own_keys(object: &JsValue) -> Vec<String> {
+    Reflect::own_keys(object).unwrap().iter().filter_map(|k| k.as_string()).collect()
+}
+
+#[wasm_bindgen_test]
+fn obj_tags_are_returned_in_the_shapes_subdivide_takes() {
+    // Edges 0-1, 1-3 and 3-2 are on face z- (0 2 3 1); one sharpness for all on the second line.
+    let tags = "t crease 2/1/0 0 1 2.5\n\
+                t crease 4/1/0 1 3 3 2 10\n\
+                t corner 2/2/0 7 4 10 0.5\n\
+                t hole 1/0/0 5\n\
+                t interpolateboundary 1/0/0 2\n\
+                t creasemethod 0/0/1 chaikin\n\
+                t smoothtriangles 0/0/1 smooth\n";
+    let mesh = ok(read_obj(&cube_obj(tags).into()));
+    assert_eq!(u32s(&mesh, "faceSizes"), vec![4; 6]);
+    let tags = field(&mesh, "tags");
+    assert_eq!(
+        own_keys(&tags),
+        ["creases", "corners", "holes", "boundary", "creaseMethod", "smoothTriangles"]
+    );
+    let creases = field(&tags, "creases");
+    assert_eq!(u32s(&creases, "edges"), vec![0, 1, 1, 3, 3, 2]);
+    assert_eq!(f32s(&creases, "sharpness"), vec![2.5, 10.0, 10.0]);
+    let corners = field(&tags, "corners");
+    assert_eq!(u32s(&corners, "vertices"), vec![7, 4]);
+    assert_eq!(f32s(&corners, "sharpness"), vec![10.0, 0.5]);
+    assert_eq!(u32s(&tags, "holes"), vec![5]);
+    assert_eq!(field(&tags, "boundary").as_string().as_deref(), Some("edge-only"));
+    assert_eq!(field(&tags, "creaseMethod").as_string().as_deref(), Some("chaikin"));
+    assert_eq!(field(&tags, "smoothTriangles").as_bool(), Some(true));
+
+    // The mesh, tags and all, goes to subdivide as it is; the tags spread into the options.
+    let plain = ok(subdivide(&mesh, &levels(1.0)));
+    let options = Object::assign(&Object::new(), tags.unchecked_ref::<Object>());
+    Reflect::set(&options, &"levels".into(), &JsValue::from(1)).unwrap();
+    let tagged = ok(subdivide(&mesh, &options));
+    // Hole 5 leaves out the 4 children of face 5; the creases and corners move vertices.
+    assert_eq!(u32s(&plain, "faceSizes").len(), 24);
+    assert_eq!(u32s(&tagged, "faceSizes").len(), 20);
+    assert_ne!(f32s(&tagged, "positions"), f32s(&plain, "positions"));
+    // A corner of sharpness 10 stays where it is.
+    assert!(close(&point(&f32s(&tagged, "positions"), 7), &[1.0, 1.0, 1.0]));
+}
+
+#[wasm_bindgen_test]
+fn obj_without_tags_has_empty_tags_and_no_optional_fields() {
+    let tags = field(&ok(read_obj(&cube_obj("").into())), "tags");
+    assert_eq!(own_keys(&tags), ["creases", "corners", "holes"]);
+    let creases = field(&tags, "creases");
+    assert_eq!(u32s(&creases, "edges"), Vec::<u32>::new());
+    assert_eq!(f32s(&creases, "sharpness"), Vec::<f32>::new());
+    assert_eq!(u32s(&field(&tags, "corners"), "vertices"), Vec::<u32>::new());
+    assert_eq!(u32s(&tags, "holes"), Vec::<u32>::new());
+    // The defaults written out are still absent: they would override options when spread.
+    let defaults = "t creasemethod 0/0/1 normal\nt smoothtriangles 0/0/1 catmark\n";
+    let tags = field(&ok(read_obj(&cube_obj(defaults).into())), "tags");
+    assert_eq!(own_keys(&tags), ["creases", "corners", "holes"]);
+    let tags = field(&ok(read_obj(&cube_obj("t interpolateboundary 1/0/0 0\n").into())), "tags");
+    assert_eq!(field(&tags, "boundary").as_string().as_deref(), Some("none"));
+}
+
+#[wasm_bindgen_test]
+fn bad_obj_tags_are_thrown_with_the_line() {
+    // The cube takes lines 1-14; the tags start at line 15.
+    let cases: [(&str, &[&str]); 5] = [
+        ("t crease 2/1/0 0 7 1\n", &["line 15", "vertices 0 and 7 are not joined by an edge"]),
+        ("t corner 1/1/0 3 1\nt corner 1/1/0 8 1\n", &["line 16", "8"]),
+        ("t hole 1/0/0 6\n", &["line 15", "6"]),
+        ("t crease 2/1/0 0 1 -1\n", &["line 15", "-1"]),
+        ("t interpolateboundary 1/0/0 3\n", &["line 15", "3 is not a boundary mode"]),
+    ];
+    for (tags, parts) in cases {
+        assert_mentions(&thrown(read_obj(&cube_obj(tags).into())), parts);
+    }
+}
+
 #[wasm_bindgen_test]
 fn errors_are_js_errors_and_the_module_keeps_working() {
     let error: JsValue = subdivide(&cube(), &levels_typo()).unwrap_err().into();
