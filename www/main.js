@@ -3,15 +3,25 @@
 // the result over its control cage. The page itself only draws: meshes, OBJ parsing and writing,
 // the predicted sizes, normals and edge lists all come from subsurf (see worker.js).
 //
+// Creases: an OBJ file's tags (readObj's mesh.tags) come with its mesh; its creased cage edges
+// are drawn in pink, thicker, and subdivide honours them. Clicking a cage edge toggles it
+// between smooth (sharpness 0) and the sharpness on the Creases slider (default 10, infinitely
+// sharp) and subdivides again; that works on the built-in meshes too. The picking (nearest cage
+// edge on screen, within a few pixels) is in picking.js.
+//
 // For tests: <html data-ready="true"> (and window.subsurfReady) once the first result is drawn;
 // after every drawn result data-shape, data-scheme (one name per level, comma-separated),
-// data-level, data-faces, data-vertices, data-faces-in, data-vertices-in, data-job and
-// data-subdivide-ms; data-busy="true" from a change until its result is on screen (or refused);
-// data-error holds the error message on screen, if any; data-max-level the highest level under
-// the memory guard; data-superseded how many jobs were cut short.
+// data-level, data-faces, data-vertices, data-faces-in, data-vertices-in, data-job,
+// data-subdivide-ms and data-creases (creased edges the result honours); data-busy="true" from a
+// change until its result is on screen (or refused); data-error holds the error message on
+// screen, if any; data-max-level the highest level under the memory guard; data-superseded how
+// many jobs were cut short. window.subsurfDemo.creases() lists the creases of the selected mesh
+// as [a, b, sharpness], edgeScreenPosition(i) gives the midpoint of cage edge i
+// (display.cageEdges) in client pixels, pickAt(x, y) the cage edge a click there would toggle.
 import { compileSubsurf, JobRunner } from './jobs.js';
 import { OrbitCamera, attachCameraControls, boundsOf } from './camera.js';
 import { Renderer } from './renderer.js';
+import { edgeKey, pickEdge, projectVertices } from './picking.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -20,6 +30,12 @@ const root = document.documentElement;
 const LEVEL_CAP = 16;
 /** A job shorter than this never shows the busy indicator, so quick changes do not flicker. */
 const BUSY_DELAY_MS = 150;
+/** How far from a cage edge, in CSS pixels, a click still picks it. */
+const PICK_RADIUS = 6;
+/** A press that moves farther than this, in CSS pixels, is a drag (orbit, pan), not a click. */
+const CLICK_SLOP = 4;
+/** OpenSubdiv's infinitely sharp (Sdc::Crease::SHARPNESS_INFINITE). */
+const SHARPNESS_INFINITE = 10;
 
 const SHAPE_LABELS = {
   cube: 'Cube (6 quads)',
@@ -66,9 +82,13 @@ const state = {
   maxFaces: 1_000_000,
   maxLevel: null,
   predicted: null, // { vertices, faces } after 0..LEVEL_CAP levels, for the last planned job
+  creaseSharpness: SHARPNESS_INFINITE, // what a click gives a smooth edge
 };
-const sources = new Map(); // option value → source
-let display = null; // what is on screen: { source, schemes, level, cage, result, timings, job }
+// option value → source; a source also holds its tags: `creases` (edge key → { a, b, sharpness },
+// as edited) and `fileTags` (readObj's tags: corners, holes, creaseMethod, ...; null for shapes)
+const sources = new Map();
+let display = null; // what is on screen: { source, schemes, level, cage, cageEdges, result, job }
+let hovered = -1; // the cage edge under the pointer, or -1
 let runner;
 let renderer;
 let notice = '';
@@ -183,8 +203,10 @@ function submit({ clampLevel = false } = {}) {
     clampLevel: clampLevel || !source.mesh,
     boundary: state.boundary,
     maxFaces: state.maxFaces,
+    // Until its mesh is back from the worker, a file's own tags apply (null).
+    tags: source.mesh ? tagOptions(source) : null,
   };
-  const context = { source, posted: performance.now(), cage: source.mesh ?? null };
+  const context = { source, posted: performance.now(), cage: source.mesh ?? null, creases: source.mesh ? creaseCount(source) : null };
   runner.run(job, {
     plan: (message) => planned(message, context),
     result: (message) => finished(message, context),
@@ -197,11 +219,18 @@ function submit({ clampLevel = false } = {}) {
 function planned(message, context) {
   const { source } = context;
   if (message.mesh) {
-    const { positions, indices, faceSizes } = message.mesh;
+    const { positions, indices, faceSizes, tags } = message.mesh;
     source.mesh = { positions, indices, faceSizes };
     source.text = null;
     context.cage = source.mesh;
+    if (tags) {
+      source.fileTags = tags;
+      source.creases = creasesFromTags(tags);
+    }
+    context.creases = creaseCount(source);
+    if (source === state.source) updateCreaseLegend();
   }
+  if (message.boundary !== state.boundary) setBoundary(message.boundary); // the file's tag
   state.maxLevel = message.maxLevel;
   state.predicted = message.predicted;
   root.dataset.maxLevel = String(message.maxLevel);
@@ -223,7 +252,9 @@ function finished(message, context) {
   renderer.setCage({ positions: cage.positions, edges: cageEdges });
   const newSource = display?.source !== source;
   const schemes = schemeList().slice(0, level);
-  display = { source, schemes, level, cage, result, job: message.id };
+  display = { source, schemes, level, cage, cageEdges, result, job: message.id };
+  hovered = -1;
+  updateCageTags();
   if (newSource) camera.frame(boundsOf(cage.positions));
 
   const faces = result.faceSizes.length;
@@ -255,6 +286,7 @@ function finished(message, context) {
       verticesIn: String(verticesIn),
       job: String(message.id),
       subdivideMs: workerTimings.subdivide.toFixed(2),
+      creases: String(context.creases),
     });
     if (!root.dataset.ready) {
       timings.navigationToReady = performance.now();
@@ -282,6 +314,153 @@ function failed(message, context) {
   }
   updateLevelControls();
   showMessage(`Not subdivided: ${message.message}\nThe view still shows the last result.`, 'error');
+}
+
+// ---------------------------------------------------------------------------------------------
+// Creases
+
+/** The creases of readObj's tags, by edge; an edge named twice takes the last value, as in subdivide. */
+function creasesFromTags(tags) {
+  const creases = new Map();
+  const { edges, sharpness } = tags.creases;
+  for (let i = 0; i < edges.length / 2; i++) {
+    const [a, b] = [edges[2 * i], edges[2 * i + 1]];
+    const value = sharpness.length === 1 ? sharpness[0] : sharpness[i];
+    if (value > 0) creases.set(edgeKey(a, b), { a, b, sharpness: value });
+    else creases.delete(edgeKey(a, b));
+  }
+  return creases;
+}
+
+const creaseCount = (source) => source.creases.size;
+
+/** subdivide's tag options for `source`: its creases as edited, everything else as its file says. */
+function tagOptions(source) {
+  const creases = [...source.creases.values()];
+  const { boundary, creases: fileCreases, ...fileTags } = source.fileTags ?? {};
+  return {
+    ...fileTags,
+    creases: {
+      edges: Uint32Array.from(creases.flatMap(({ a, b }) => [a, b])),
+      sharpness: Float32Array.from(creases, ({ sharpness }) => sharpness),
+    },
+  };
+}
+
+/** Draws the tags of the mesh on screen over its cage: creased edges, sharp corners, the hovered edge. */
+function updateCageTags() {
+  if (!display) return;
+  const { source, cageEdges } = display;
+  const sharp = [];
+  const semi = [];
+  for (const { a, b, sharpness } of source.creases.values()) (sharpness >= SHARPNESS_INFINITE ? sharp : semi).push(a, b);
+  const corners = source.fileTags?.corners;
+  const sharpCorners = corners ? corners.vertices.filter((_, i) => (corners.sharpness.length === 1 ? corners.sharpness[0] : corners.sharpness[i]) > 0) : null;
+  renderer.setCageTags({
+    sharp: Uint32Array.from(sharp),
+    semi: Uint32Array.from(semi),
+    corners: sharpCorners,
+    hover: hovered >= 0 ? cageEdges.subarray(2 * hovered, 2 * hovered + 2) : null,
+  });
+}
+
+const plural = (n, one, many = `${one}s`) => `${count(n)} ${n === 1 ? one : many}`;
+
+function updateCreaseLegend() {
+  const source = state.source;
+  const creases = [...source.creases.values()];
+  const semi = creases.filter(({ sharpness }) => sharpness < SHARPNESS_INFINITE).length;
+  let text = plural(creases.length, 'creased edge');
+  if (semi > 0) text += ` (${semi === creases.length ? 'all' : count(semi)} semi-sharp)`;
+  const corners = source.fileTags?.corners.vertices.length ?? 0;
+  const holes = source.fileTags?.holes.length ?? 0;
+  if (corners) text += `, ${plural(corners, 'sharp corner')}`;
+  if (holes) text += `, ${plural(holes, 'hole')}`;
+  $('crease-count').textContent = text;
+  $('clear-creases').disabled = creases.length === 0;
+}
+
+function showCreaseSharpness() {
+  const value = state.creaseSharpness;
+  $('crease-sharpness-value').textContent = value >= SHARPNESS_INFINITE ? `${value} (∞)` : String(value);
+}
+
+/** The cage's vertices on screen, in CSS pixels of the canvas (see picking.js). */
+function cageOnScreen() {
+  const { viewProjection } = camera.view(canvas.width / Math.max(canvas.height, 1));
+  return projectVertices(display.cage.positions, viewProjection, canvas.clientWidth, canvas.clientHeight);
+}
+
+/** Edits act on the mesh on screen, and only while its cage (what the user clicks) is shown. */
+const canEditCreases = () => display !== null && display.source === state.source && $('cage').checked;
+
+/** The cage edge a click at client pixel (x, y) picks, or -1. */
+function cageEdgeAt(x, y) {
+  if (!canEditCreases()) return -1;
+  const box = canvas.getBoundingClientRect();
+  return pickEdge(display.cageEdges, cageOnScreen(), x - box.left, y - box.top, PICK_RADIUS);
+}
+
+/** Toggles cage edge `i` between smooth and the chosen sharpness, and subdivides again. */
+function toggleCrease(i) {
+  const { source, cageEdges } = display;
+  const [a, b] = [cageEdges[2 * i], cageEdges[2 * i + 1]];
+  const key = edgeKey(a, b);
+  if (source.creases.has(key)) source.creases.delete(key);
+  else source.creases.set(key, { a, b, sharpness: state.creaseSharpness });
+  updateCageTags();
+  updateCreaseLegend();
+  requestDraw();
+  submit();
+}
+
+function clearCreases() {
+  if (state.source.creases.size === 0) return;
+  state.source.creases.clear();
+  updateCageTags();
+  updateCreaseLegend();
+  requestDraw();
+  submit();
+}
+
+/** Clicks on the canvas pick cage edges; the pointer shows which edge a click would take. */
+function attachCreaseEditing() {
+  let press = null;
+  canvas.addEventListener('pointerdown', (event) => {
+    press = event.isPrimary && event.button === 0 && !event.shiftKey ? { x: event.clientX, y: event.clientY } : null;
+  });
+  canvas.addEventListener('click', (event) => {
+    const moved = press ? Math.hypot(event.clientX - press.x, event.clientY - press.y) : Infinity;
+    press = null;
+    // The second click of a double click (which frames the mesh) is not a second toggle.
+    if (event.detail > 1 || moved > CLICK_SLOP) return;
+    const edge = cageEdgeAt(event.clientX, event.clientY);
+    if (edge >= 0) toggleCrease(edge);
+  });
+  let pending = null;
+  const hover = () => {
+    const edge = pending ? cageEdgeAt(pending.x, pending.y) : -1;
+    pending = null;
+    canvas.classList.toggle('over-edge', edge >= 0);
+    if (edge === hovered) return;
+    hovered = edge;
+    updateCageTags();
+    requestDraw();
+  };
+  canvas.addEventListener('pointermove', (event) => {
+    if (event.buttons !== 0 || event.pointerType === 'touch') return;
+    if (!pending) requestAnimationFrame(hover);
+    pending = { x: event.clientX, y: event.clientY };
+  });
+  canvas.addEventListener('pointerleave', () => {
+    pending = null;
+    hover();
+  });
+  $('crease-sharpness').addEventListener('input', (event) => {
+    state.creaseSharpness = Number(event.target.value);
+    showCreaseSharpness();
+  });
+  $('clear-creases').addEventListener('click', clearCreases);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -349,7 +528,14 @@ function renderLevelSchemes() {
 function selectSource(source) {
   state.source = source;
   $('shape').value = source.value;
+  updateCreaseLegend();
   submit({ clampLevel: true });
+}
+
+function setBoundary(boundary) {
+  state.boundary = boundary;
+  $('boundary').value = boundary;
+  $('boundary-hint').textContent = BOUNDARY_HINTS[boundary] ?? '';
 }
 
 async function openFile(file) {
@@ -362,7 +548,7 @@ async function openFile(file) {
     return;
   }
   const value = `file-${++files}`;
-  const source = { value, label: file.name, kind: 'obj', name: file.name, text };
+  const source = { value, label: file.name, kind: 'obj', name: file.name, text, creases: new Map(), fileTags: null };
   sources.set(value, source);
   $('shape').append(new Option(`File: ${file.name}`, value));
   selectSource(source);
@@ -415,8 +601,7 @@ function attachControls() {
     submit();
   });
   $('boundary').addEventListener('change', (event) => {
-    state.boundary = event.target.value;
-    $('boundary-hint').textContent = BOUNDARY_HINTS[state.boundary] ?? '';
+    setBoundary(event.target.value);
     submit();
   });
   $('guard').addEventListener('change', (event) => {
@@ -427,6 +612,7 @@ function attachControls() {
   for (const input of document.querySelectorAll('input[name=shading], #wireframe, #cage')) {
     input.addEventListener('change', () => requestDraw());
   }
+  attachCreaseEditing();
   $('frame').addEventListener('click', frameMesh);
   $('download').addEventListener('click', download);
   attachCameraControls(canvas, camera, { changed: () => requestDraw(), frame: frameMesh });
@@ -467,16 +653,34 @@ async function main() {
   runner = started.runner;
   const { info } = started;
 
-  for (const name of info.shapes) sources.set(name, { value: name, label: label(SHAPE_LABELS, name).replace(/ \(.*\)$/, ''), kind: 'shape', name });
+  for (const name of info.shapes) {
+    sources.set(name, { value: name, label: label(SHAPE_LABELS, name).replace(/ \(.*\)$/, ''), kind: 'shape', name, creases: new Map(), fileTags: null });
+  }
   fillSelect($('shape'), info.shapes, SHAPE_LABELS);
   fillSelect($('scheme'), info.schemes, SCHEME_LABELS);
   fillSelect($('boundary'), info.boundaries, BOUNDARY_LABELS);
   $('scheme').value = state.scheme;
-  $('boundary').value = state.boundary;
-  $('boundary-hint').textContent = BOUNDARY_HINTS[state.boundary] ?? '';
+  setBoundary(state.boundary);
+  $('crease-sharpness').value = String(state.creaseSharpness);
+  showCreaseSharpness();
   $('guard').value = String(state.maxFaces);
   $('version').textContent = `subsurf ${info.version} · WebAssembly in a Web Worker · WebGL2`;
-  window.subsurfDemo = { camera, state, runner, get display() { return display; } };
+  window.subsurfDemo = {
+    camera,
+    state,
+    runner,
+    get display() {
+      return display;
+    },
+    creases: () => [...(state.source?.creases.values() ?? [])].map(({ a, b, sharpness }) => [a, b, sharpness]),
+    edgeScreenPosition(i) {
+      const screen = cageOnScreen();
+      const [a, b] = [3 * display.cageEdges[2 * i], 3 * display.cageEdges[2 * i + 1]];
+      const box = canvas.getBoundingClientRect();
+      return { x: box.left + (screen[a] + screen[b]) / 2, y: box.top + (screen[a + 1] + screen[b + 1]) / 2 };
+    },
+    pickAt: (x, y) => cageEdgeAt(x, y),
+  };
 
   attachControls();
   state.source = sources.get('cube');

@@ -3,9 +3,10 @@
 // subsurf in the worker.
 //
 // Edges are drawn as line layers made of groups, each group an index buffer with its own
-// colour. Today the wireframe has one group ('edges'); sharp (creased) edges, once the library
-// takes crease tags, become a second group ('sharp') drawn in another colour, without any
-// change to the layer itself.
+// colour. The cage has its edges, its creased edges split by sharpness ('sharp': infinitely
+// sharp, 'semi': semi-sharp), its sharp corners and the edge under the pointer ('hover'). WebGL
+// draws lines one pixel wide on most systems, so the creased ones are drawn a few times, a
+// pixel apart, to stand out.
 
 const SURFACE_VS = `#version 300 es
 layout(location = 0) in vec3 position;
@@ -48,8 +49,10 @@ const LINE_VS = `#version 300 es
 layout(location = 0) in vec3 position;
 uniform mat4 viewProjection;
 uniform float pointSize;
+uniform vec2 offset; // in clip units, to thicken lines by drawing them again beside themselves
 void main() {
   gl_Position = viewProjection * vec4(position, 1.0);
+  gl_Position.xy += offset * gl_Position.w;
   gl_PointSize = pointSize;
 }`;
 
@@ -66,7 +69,10 @@ void main() {
 export const COLORS = {
   background: [0.11, 0.122, 0.141],
   wireframe: [0.08, 0.06, 0.05, 0.5],
-  sharp: [0.95, 0.2, 0.55, 1], // creased edges, for when the page can show them
+  sharp: [0.95, 0.2, 0.55, 1], // infinitely sharp creases and corners (style.css: --sharp)
+  semi: [1, 0.55, 0.78, 1], // semi-sharp creases (style.css: --semi)
+  sharpHidden: [0.95, 0.2, 0.55, 0.3],
+  hover: [1, 1, 1, 1],
   cage: [0.35, 0.78, 1, 0.95],
   cageHidden: [0.35, 0.78, 1, 0.16],
 };
@@ -136,12 +142,13 @@ class MeshBuffers {
     group.count = indices.length;
   }
 
-  draw(name, mode) {
+  /** Draws group `name`; `allVertices` draws every vertex as a point instead of its indices. */
+  draw(name, mode, { allVertices = false } = {}) {
     const group = this.groups.get(name);
     if (!group || group.count === 0) return;
     const { gl } = this;
     gl.bindVertexArray(group.vao);
-    if (mode === gl.POINTS) gl.drawArrays(gl.POINTS, 0, this.vertexCount);
+    if (allVertices) gl.drawArrays(gl.POINTS, 0, this.vertexCount);
     else gl.drawElements(mode, group.count, gl.UNSIGNED_INT, 0);
     gl.bindVertexArray(null);
   }
@@ -151,7 +158,7 @@ export class Renderer {
   constructor(gl) {
     this.gl = gl;
     this.surface = program(gl, SURFACE_VS, SURFACE_FS, ['viewProjection', 'eye', 'light', 'smoothShading']);
-    this.lines = program(gl, LINE_VS, LINE_FS, ['viewProjection', 'tint', 'pointSize', 'roundPoints']);
+    this.lines = program(gl, LINE_VS, LINE_FS, ['viewProjection', 'tint', 'pointSize', 'roundPoints', 'offset']);
     this.refined = new MeshBuffers(gl);
     this.cage = new MeshBuffers(gl);
   }
@@ -164,11 +171,21 @@ export class Renderer {
     this.refined.setGroup('sharp', sharpEdges);
   }
 
-  /** The control cage: its vertices as dots and its edges (and later its sharp edges) as lines. */
-  setCage({ positions, edges, sharpEdges = null }) {
+  /** The control cage: its vertices as dots and its edges as lines; then its tags. */
+  setCage({ positions, edges }) {
     this.cage.setVertices(positions, null);
     this.cage.setGroup('edges', edges);
-    this.cage.setGroup('sharp', sharpEdges);
+  }
+
+  /**
+   * The cage's tags: `sharp` and `semi` edges (vertex pairs), sharp `corners` (vertices) and the
+   * `hover` edge; a missing one is removed.
+   */
+  setCageTags({ sharp = null, semi = null, corners = null, hover = null }) {
+    this.cage.setGroup('sharp', sharp);
+    this.cage.setGroup('semi', semi);
+    this.cage.setGroup('corners', corners);
+    this.cage.setGroup('hover', hover);
   }
 
   /**
@@ -219,6 +236,7 @@ export class Renderer {
     gl.uniformMatrix4fv(l.viewProjection, false, viewProjection);
     gl.uniform1i(l.roundPoints, 0);
     gl.uniform1f(l.pointSize, 1);
+    gl.uniform2f(l.offset, 0, 0);
     gl.enable(gl.BLEND);
     gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
     gl.depthMask(false);
@@ -229,19 +247,36 @@ export class Renderer {
       this.refined.draw('sharp', gl.LINES);
     }
     if (cage) {
+      const ratio = Math.min(devicePixelRatio, 2);
       // The cage in front of the surface solid, behind it faint: it usually encloses the surface.
       for (const [depthFunc, color] of [[gl.GREATER, COLORS.cageHidden], [gl.LEQUAL, COLORS.cage]]) {
+        const front = depthFunc === gl.LEQUAL;
         gl.depthFunc(depthFunc);
         gl.uniform4fv(l.tint, color);
         gl.uniform1f(l.pointSize, 1);
         gl.uniform1i(l.roundPoints, 0);
         this.cage.draw('edges', gl.LINES);
-        gl.uniform4fv(l.tint, depthFunc === gl.LEQUAL ? COLORS.sharp : color);
-        this.cage.draw('sharp', gl.LINES);
+        const thick = (name, tint, pixels) => {
+          gl.uniform4fv(l.tint, tint);
+          for (let i = 0; i < pixels; i++) {
+            for (let j = 0; j < pixels; j++) {
+              gl.uniform2f(l.offset, (2 * (i - (pixels - 1) / 2)) / width, (2 * (j - (pixels - 1) / 2)) / height);
+              this.cage.draw(name, gl.LINES);
+            }
+          }
+          gl.uniform2f(l.offset, 0, 0);
+        };
+        const crease = Math.round(2 * ratio);
+        thick('semi', front ? COLORS.semi : COLORS.sharpHidden, front ? crease : 1);
+        thick('sharp', front ? COLORS.sharp : COLORS.sharpHidden, front ? crease + 1 : 1);
+        if (front) thick('hover', COLORS.hover, crease + 1);
         gl.uniform4fv(l.tint, color);
-        gl.uniform1f(l.pointSize, 6 * Math.min(devicePixelRatio, 2));
+        gl.uniform1f(l.pointSize, 6 * ratio);
         gl.uniform1i(l.roundPoints, 1);
-        this.cage.draw('edges', gl.POINTS);
+        this.cage.draw('edges', gl.POINTS, { allVertices: true });
+        gl.uniform4fv(l.tint, front ? COLORS.sharp : COLORS.sharpHidden);
+        gl.uniform1f(l.pointSize, 9 * ratio);
+        this.cage.draw('corners', gl.POINTS);
       }
     }
     gl.depthFunc(gl.LEQUAL);

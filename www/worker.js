@@ -5,11 +5,14 @@
 //
 // Messages in:
 //   { type: 'init', module }                      → { type: 'ready', version, schemes, boundaries, shapes }
-//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces }
+//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces, tags }
 //       input: { kind: 'shape', name } | { kind: 'obj', name, text } | { kind: 'mesh', mesh }
 //       schemes: one scheme name per level for every level the page could ask for (the page's
 //       per-level choices, then its main scheme); the job uses the first `level` of them.
-//     → { type: 'plan', id, level, maxLevel, predicted, mesh? }   (mesh: the input, when not sent in)
+//       tags: subdivide's tag options (creases, corners, holes, creaseMethod, smoothTriangles),
+//       or null: an OBJ file's own tags (readObj's mesh.tags, its boundary included), or none.
+//     → { type: 'plan', id, level, maxLevel, predicted, boundary, mesh? }
+//       (mesh: the input with its tags, when not sent in; boundary: the one used)
 //     → { type: 'result', id, level, result, normals, edges, cageEdges, timings }
 //     or { type: 'error', id, stage: 'read' | 'predict' | 'subdivide', message, fatal }
 //   { type: 'writeObj', id, mesh }                → { type: 'obj', id, blob } or an error
@@ -85,20 +88,24 @@ function runJob(job) {
   const read = stage(id, 'read', () => inputMesh(job));
   if (!read) return;
   const mesh = read.value;
+  // A file's interpolateboundary tag chooses the boundary rule; the page then shows it.
+  const { boundary: fileBoundary, ...fileTags } = mesh.tags ?? {};
+  const tags = job.tags ?? fileTags;
+  const boundary = job.tags ? job.boundary : (fileBoundary ?? job.boundary);
 
   // The same counts formulas as subdivide's maxFaces guard, so maxLevel is exactly the highest
   // level the library accepts.
-  const planned = stage(id, 'predict', () => predictCounts(mesh, { scheme: job.schemes, boundary: job.boundary }));
+  const planned = stage(id, 'predict', () => predictCounts(mesh, { scheme: job.schemes, boundary }));
   if (!planned) return;
   const predicted = planned.value;
   let maxLevel = 0;
   while (maxLevel + 1 < predicted.faces.length && predicted.faces[maxLevel + 1] <= job.maxFaces) maxLevel++;
   const level = job.clampLevel ? Math.min(job.level, maxLevel) : job.level;
-  const plan = { type: 'plan', id, level, maxLevel, predicted: { vertices: [...predicted.vertices], faces: [...predicted.faces] } };
+  const plan = { type: 'plan', id, level, maxLevel, boundary, predicted: { vertices: [...predicted.vertices], faces: [...predicted.faces] } };
   if (job.input.kind !== 'mesh') plan.mesh = mesh; // copied: this worker still needs it
   self.postMessage(plan);
 
-  const options = { scheme: job.schemes.slice(0, level), levels: level, boundary: job.boundary, maxFaces: job.maxFaces };
+  const options = { ...tags, scheme: job.schemes.slice(0, level), levels: level, boundary, maxFaces: job.maxFaces };
   const started = performance.now();
   const refined = stage(id, 'subdivide', () => subdivide(mesh, options));
   if (!refined) return;

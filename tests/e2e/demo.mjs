@@ -2,12 +2,14 @@
 //   node tests/e2e/demo.mjs                      (after scripts/build-pkg.sh)
 //   UPDATE_SCREENSHOT=1 node tests/e2e/demo.mjs  (also rewrites docs/demo.png for the README)
 //   DEMO_URL=http://127.0.0.1:8080/ node tests/e2e/demo.mjs   (a page scripts/demo.sh serves)
+//   PKG_DIR=/elsewhere/pkg node tests/e2e/demo.mjs             (a package built elsewhere)
 //
 // Serves www/ (with /pkg/ mapped to the freshly built pkg/) on a free port and drives the page as
 // a user would: checks that the canvas shows a shaded mesh, that the face and vertex counts shown
 // for each scheme, level and mesh equal the counts formulas, that an OBJ opened through the file
 // input is subdivided and a broken one is refused with a message while the last result stays,
-// that the memory guard refuses a level with a message, that a big job still running is
+// that an OBJ's crease tags are drawn and honoured and that clicking a cage edge toggles its
+// crease and changes the surface (on a built-in mesh too), that the memory guard refuses a level with a message, that a big job still running is
 // superseded by a later change while the page stays responsive, that the OBJ download holds the
 // shown mesh, and that mouse and touch move the camera. Screenshots go to artifacts/. Exits
 // non-zero on failure.
@@ -20,6 +22,7 @@ import { chromium } from 'playwright-core';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const artifacts = join(root, 'artifacts');
+const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
 const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const TYPES = {
   '.html': 'text/html; charset=utf-8',
@@ -35,7 +38,7 @@ const TYPES = {
 function serve() {
   const server = createServer((request, response) => {
     const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
-    const [base, rest] = path.startsWith('/pkg/') ? [join(root, 'pkg'), path.slice(5)] : [join(root, 'www'), path.slice(1)];
+    const [base, rest] = path.startsWith('/pkg/') ? [pkg, path.slice(5)] : [join(root, 'www'), path.slice(1)];
     let file = normalize(join(base, rest || 'index.html'));
     if (file !== base && !file.startsWith(base + sep)) return void response.writeHead(403).end();
     if (existsSync(file) && statSync(file).isDirectory()) file = join(file, 'index.html');
@@ -57,17 +60,22 @@ async function analyze(page, png) {
     const { data } = context.getImageData(0, 0, image.width, image.height);
     const background = [data[0], data[1], data[2]]; // a corner is always background
     let mesh = 0;
+    let crease = 0;
     let hash = 0;
     const shades = new Set();
     for (let i = 0; i < data.length; i += 4) {
-      const difference = Math.abs(data[i] - background[0]) + Math.abs(data[i + 1] - background[1]) + Math.abs(data[i + 2] - background[2]);
+      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+      const difference = Math.abs(r - background[0]) + Math.abs(g - background[1]) + Math.abs(b - background[2]);
       if (difference > 30) {
         mesh++;
-        shades.add(data[i] >> 3);
+        shades.add(r >> 3);
       }
+      // The pinks of creased cage edges: red over blue over green. The surface's oranges have
+      // blue under green, the cage's blues red under blue.
+      if (r > 150 && r >= b && b > g + 40) crease++;
       hash = (hash * 31 + data[i] * 7 + data[i + 1] * 3 + data[i + 2]) | 0;
     }
-    return { total: data.length / 4, mesh, shades: shades.size, hash, background };
+    return { total: data.length / 4, mesh, crease, shades: shades.size, hash, background };
   }, png.toString('base64'));
 }
 
@@ -84,7 +92,7 @@ const cubeCatmullClark = (level) => ({ faces: 6 * 4 ** level, vertices: level ==
 const icosahedronLoop = (level) => ({ faces: 20 * 4 ** level, vertices: 10 * 4 ** level + 2 });
 
 async function run() {
-  if (!existsSync(join(root, 'pkg', 'subsurf_bg.wasm'))) throw new Error('pkg/ is not built; run scripts/build-pkg.sh');
+  if (!existsSync(join(pkg, 'subsurf_bg.wasm'))) throw new Error(`${pkg} is not built; run scripts/build-pkg.sh`);
   mkdirSync(artifacts, { recursive: true });
   // DEMO_URL tests a page served elsewhere, e.g. by scripts/demo.sh.
   const server = process.env.DEMO_URL ? null : await serve();
@@ -189,7 +197,7 @@ async function run() {
     }
 
     // ---- every scheme the package offers is in the menu
-    const library = await import(pathToFileURL(join(root, 'pkg', 'node.js')).href);
+    const library = await import(pathToFileURL(join(pkg, 'node.js')).href);
     const menu = (select) => page.locator(`${select} option`).evaluateAll((options) => options.map((o) => o.value));
     assert.deepEqual(await menu('#scheme'), library.schemeNames(), 'the scheme menu lists schemeNames()');
     assert.deepEqual(await menu('#boundary'), library.boundaryRules(), 'the boundary menu lists boundaryRules()');
@@ -321,6 +329,109 @@ async function run() {
     await shows({ shape: 'file-3', level: 1, faces: 12, vertices: 14, facesIn: 4, verticesIn: 4 }, 'tetrahedron.obj dropped');
     assert.ok(await page.locator('#drop-zone').isHidden(), 'the drop zone hides after the drop');
     await shot('tetrahedron-dropped');
+
+    // ---- creases: an OBJ with OpenSubdiv crease tags (12 creased edges: 11 of sharpness 5, one
+    // of 0.1; interpolateboundary 2, edge-only). Its creased cage edges are drawn in pink, the
+    // surface honours them, and clicking a cage edge toggles its crease.
+    const tagged = readFileSync(join(root, 'tests', 'meshes', 'osd', 'catmark_cube_creases1.obj'), 'utf8');
+    const taggedMesh = library.readObj(tagged);
+    // What the page must show: subdivide in Node, one level, with the given creases.
+    const expectedPositions = (creases) => Array.from(library.subdivide(taggedMesh, {
+      levels: 1,
+      boundary: 'edge-only',
+      creases: { edges: Uint32Array.from(creases.flatMap(([a, b]) => [a, b])), sharpness: Float32Array.from(creases, (c) => c[2]) },
+    }).positions);
+    const shownPositions = () => page.evaluate(() => Array.from(window.subsurfDemo.display.result.positions));
+    const pageCreases = () => page.evaluate(() => window.subsurfDemo.creases());
+    const fileCreases = [];
+    for (let i = 0; i < taggedMesh.tags.creases.sharpness.length; i++) {
+      fileCreases.push([taggedMesh.tags.creases.edges[2 * i], taggedMesh.tags.creases.edges[2 * i + 1], taggedMesh.tags.creases.sharpness[i]]);
+    }
+    await page.setInputFiles('#file', { name: 'cube_creases1.obj', mimeType: 'model/obj', buffer: Buffer.from(tagged) });
+    let creased = await shows({ shape: 'file-4', level: 1, faces: 24, vertices: 26, facesIn: 6, creases: 12 }, 'cube_creases1.obj');
+    assert.equal(await page.locator('#crease-count').textContent(), '12 creased edges (all semi-sharp)');
+    assert.equal(await page.locator('#boundary').inputValue(), 'edge-only', "the file's interpolateboundary 2 sets the boundary rule");
+    assert.deepEqual(await pageCreases(), fileCreases, 'the page holds the creases of the file');
+    const smoothPositions = expectedPositions([]);
+    let positions = await shownPositions();
+    assert.deepEqual(positions, expectedPositions(fileCreases), 'the surface honours the file\'s creases');
+    assert.notDeepEqual(positions, smoothPositions, 'creases change the surface');
+    const creasedPicture = await shot('creases-file');
+    console.log(`  cube_creases1.obj: "${await page.locator('#crease-count').textContent()}", ${creasedPicture.crease} crease-coloured pixels`);
+    assert.ok(creasedPicture.crease > 400, `creased edges are drawn in their colour (${creasedPicture.crease} pixels)`);
+
+    // A click away from every edge changes nothing.
+    const box0 = await canvas.boundingBox();
+    assert.equal(await page.evaluate(([x, y]) => window.subsurfDemo.pickAt(x, y), [box0.x + 5, box0.y + 5]), -1);
+    await page.mouse.click(box0.x + 5, box0.y + 5);
+    await afterFrames();
+    assert.equal((await dataset()).job, creased.job, 'a click on no edge does not subdivide again');
+
+    // A cage edge of sharpness 5 whose midpoint on screen is closer to it than to any other edge.
+    const target = await page.evaluate(() => {
+      const demo = window.subsurfDemo;
+      const edges = demo.display.cageEdges;
+      for (let i = 0; i < edges.length / 2; i++) {
+        const crease = demo.creases().find(([a, b]) => (a === edges[2 * i] && b === edges[2 * i + 1]) || (a === edges[2 * i + 1] && b === edges[2 * i]));
+        const at = demo.edgeScreenPosition(i);
+        if (crease?.[2] === 5 && demo.pickAt(at.x, at.y) === i) return { i, a: crease[0], b: crease[1], edge: [edges[2 * i], edges[2 * i + 1]], ...at };
+      }
+      return null;
+    });
+    assert.ok(target, 'some creased cage edge can be clicked');
+    const withoutTarget = fileCreases.filter(([a, b]) => !(a === target.a && b === target.b));
+    await page.mouse.click(target.x, target.y);
+    creased = await shows({ shape: 'file-4', creases: 11 }, `click on cage edge ${target.a}-${target.b}`);
+    assert.equal(await page.locator('#crease-count').textContent(), '11 creased edges (all semi-sharp)');
+    assert.deepEqual(await pageCreases(), withoutTarget, `edge ${target.a}-${target.b} is smooth after the click`);
+    const unclicked = positions;
+    positions = await shownPositions();
+    assert.notDeepEqual(positions, unclicked, 'the surface changes with the click');
+    assert.deepEqual(positions, expectedPositions(withoutTarget), 'the surface is that of the remaining creases');
+    const afterFirstClick = positions;
+
+    // Clicking it again creases it with the chosen sharpness (the slider, 10 by default).
+    await page.mouse.click(target.x, target.y);
+    await shows({ shape: 'file-4', creases: 12 }, `second click on cage edge ${target.a}-${target.b}`);
+    assert.equal(await page.locator('#crease-count').textContent(), '12 creased edges (11 semi-sharp)');
+    const reclicked = [...withoutTarget, [...target.edge, 10]];
+    assert.deepEqual(await pageCreases(), reclicked);
+    positions = await shownPositions();
+    assert.deepEqual(positions, expectedPositions(reclicked), 'the edge is now infinitely sharp');
+    // (At one level, sharpness 5 and 10 both act as infinitely sharp: the surface is as before.)
+    assert.notDeepEqual(positions, afterFirstClick, 'the surface changes with the second click');
+
+    // Clear creases: every edge smooth, nothing drawn in crease colours.
+    await page.click('#clear-creases');
+    await shows({ shape: 'file-4', creases: 0 }, 'clear creases');
+    assert.equal(await page.locator('#crease-count').textContent(), '0 creased edges');
+    assert.ok(await page.locator('#clear-creases').isDisabled(), 'nothing left to clear');
+    assert.deepEqual(await shownPositions(), smoothPositions, 'the surface of the smooth cube');
+    const cleared = await shot('creases-cleared');
+    assert.ok(cleared.crease < creasedPicture.crease / 10, `no creased edges drawn (${cleared.crease} crease-coloured pixels)`);
+
+    // A built-in mesh has no tags; a click creases one of its edges.
+    await page.selectOption('#boundary', 'edge-and-corner');
+    await page.selectOption('#shape', 'cube');
+    const cube = await shows({ shape: 'cube', level: 1, creases: 0 }, 'cube without creases');
+    const cubePositions = await shownPositions();
+    const cubeTarget = await page.evaluate(() => {
+      const demo = window.subsurfDemo;
+      for (let i = 0; i < demo.display.cageEdges.length / 2; i++) {
+        const at = demo.edgeScreenPosition(i);
+        if (demo.pickAt(at.x, at.y) === i) return at;
+      }
+      return null;
+    });
+    await page.mouse.click(cubeTarget.x, cubeTarget.y);
+    await shows({ shape: 'cube', level: 1, creases: 1 }, 'a crease on the cube');
+    assert.equal(await page.locator('#crease-count').textContent(), '1 creased edge');
+    assert.notDeepEqual(await shownPositions(), cubePositions, 'the crease changes the cube');
+    assert.ok((await shot('cube-crease')).crease > 50, 'the crease is drawn');
+    await page.click('#clear-creases');
+    await shows({ shape: 'cube', level: 1, creases: 0 }, 'the cube smooth again');
+    assert.deepEqual(await shownPositions(), cubePositions);
+    assert.notEqual((await dataset()).job, cube.job);
 
     // ---- the memory guard: a level over maxFaces is refused with a message; the result stays
     await page.selectOption('#shape', 'cube');
