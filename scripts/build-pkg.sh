@@ -19,7 +19,7 @@ cargo build --release --target wasm32-unknown-unknown --lib
 
 rm -rf "$OUT"
 echo "== build-pkg: wasm-bindgen --target web --out-dir $OUT"
-wasm-bindgen --target web --out-dir "$OUT" "target/wasm32-unknown-unknown/release/$CRATE.wasm"
+wasm-bindgen --target web --out-dir "$OUT" "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/$CRATE.wasm"
 
 BG="$OUT/${CRATE}_bg.wasm"
 BEFORE=$(size "$BG")
