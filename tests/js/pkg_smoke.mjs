@@ -120,7 +120,8 @@ const dts = readFileSync(join(installed, 'subsurf.d.ts'), 'utf8').replace(/\s+/g
 check('subsurf.d.ts', () => {
   for (const line of [
     'export function subdivide(mesh: SubdivideMesh, options?: SubdivideOptions): SubdivideResult;',
-    'export function readObj(text: string): PolygonMesh;',
+    'export function readObj(text: string): ObjMesh;',
+    'export interface ObjMesh extends PolygonMesh { tags: ObjTags; }',
     'export function writeObj(mesh: SubdivideMesh): string;',
     'export function version(): string;',
     'export interface SubdivideMesh {',
