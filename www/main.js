@@ -309,6 +309,7 @@ function failed(message, context) {
       $('shape').querySelector(`option[value="${rejected.value}"]`)?.remove();
     }
     $('shape').value = state.source.value;
+    updateCreaseLegend();
     showMessage(`Could not open ${rejected.label}: ${message.message}\nThe view still shows the last result.`, 'error');
     return;
   }
