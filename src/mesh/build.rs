@@ -1,5 +1,5 @@
-//! Building a [`HalfEdgeMesh`] from flat arrays: validation first, then connectivity by counting
-//! sorts and per-vertex sorted runs, with no hash map.
+//! Building a [`HalfEdgeMesh`] from flat arrays: validation first, then connectivity by a counting
+//! sort on the from-vertex and valence-sized scans, with no hash map and no comparison sort.
 
 use super::HalfEdgeMesh;
 use crate::error::{Error, Result};
@@ -18,17 +18,25 @@ pub(super) fn from_faces(
     let num_half_edges = indices.len();
 
     let mut cell_offsets = Vec::with_capacity(face_sizes.len() + 1);
-    let mut he_cell = Vec::with_capacity(num_half_edges);
-    let mut he_to = Vec::with_capacity(num_half_edges);
-    let mut total = 0usize;
-    cell_offsets.push(0);
-    for (c, &n) in face_sizes.iter().enumerate() {
-        let corners = &indices[total..total + n as usize];
-        he_to.extend_from_slice(&corners[1..]);
-        he_to.push(corners[0]);
-        he_cell.extend(std::iter::repeat_n(c as u32, n as usize));
-        total += n as usize;
-        cell_offsets.push(total as u32);
+    cell_offsets.push(0u32);
+    let mut total = 0u32;
+    cell_offsets.extend(face_sizes.iter().map(|&n| {
+        total += n;
+        total
+    }));
+    // Each half-edge ends where the next one of its cell starts: the list shifted by one, with
+    // the last corner of every cell wrapping round to its first.
+    let mut he_to = vec![0u32; num_half_edges];
+    let mut he_cell = vec![0u32; num_half_edges];
+    if let Some(last) = num_half_edges.checked_sub(1) {
+        he_to[..last].copy_from_slice(&indices[1..]);
+    }
+    for (c, range) in cell_offsets.windows(2).enumerate() {
+        let (start, end) = (range[0] as usize, range[1] as usize);
+        he_to[end - 1] = indices[start];
+        for slot in &mut he_cell[start..end] {
+            *slot = c as u32;
+        }
     }
 
     let mut mesh = HalfEdgeMesh {
@@ -38,10 +46,16 @@ pub(super) fn from_faces(
         he_cell,
         ..HalfEdgeMesh::default()
     };
-    let out_to = build_vertex_half_edges(&mut mesh, &he_to, num_vertices);
-    drop(he_to);
-    build_edges(&mut mesh, &out_to);
-    put_boundary_half_edges_first(&mut mesh);
+    // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
+    let (vertex_offsets, vertex_half_edges, out_to) =
+        counting_sort_with(indices, num_vertices, &he_to);
+    mesh.vertex_offsets = vertex_offsets;
+    mesh.vertex_half_edges = vertex_half_edges;
+    let has_boundary = build_edges(&mut mesh, &he_to, &out_to);
+    drop((he_to, out_to));
+    if has_boundary {
+        put_boundary_half_edges_first(&mut mesh);
+    }
     mesh.multi_fan_vertices =
         !mesh.non_manifold_edges && (0..mesh.num_vertices() as u32).any(|v| !mesh.is_single_fan(v));
     Ok(mesh)
@@ -114,112 +128,137 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     Ok(())
 }
 
-/// Fills `vertex_offsets`/`vertex_half_edges` by a counting sort on the from-vertex, each
-/// vertex's run sorted by to-vertex so that the half-edges of one vertex pair are adjacent.
-/// Returns the to-vertex of every list entry, a parallel array that keeps the edge search
-/// below on contiguous memory.
-fn build_vertex_half_edges(
-    mesh: &mut HalfEdgeMesh,
-    he_to: &[u32],
-    num_vertices: usize,
-) -> Vec<u32> {
-    let offsets = bucket_offsets(&mesh.he_from, num_vertices);
-    let mut fill = offsets.clone();
-    let mut keys = vec![0u64; mesh.he_from.len()];
-    for (h, &v) in mesh.he_from.iter().enumerate() {
-        keys[fill[v as usize] as usize] = ((he_to[h] as u64) << 32) | h as u64;
-        fill[v as usize] += 1;
-    }
-    drop(fill);
-    for v in 0..num_vertices {
-        keys[offsets[v] as usize..offsets[v + 1] as usize].sort_unstable();
-    }
-    mesh.vertex_offsets = offsets;
-    mesh.vertex_half_edges = keys.iter().map(|&k| k as u32).collect();
-    keys.iter().map(|&k| (k >> 32) as u32).collect()
+/// The edge arrays of a mesh, as [`build_edges`] makes them.
+struct Edges {
+    he_edge: Vec<u32>,
+    he_next_around_edge: Vec<u32>,
+    edge_vertices: Vec<[u32; 2]>,
+    edge_offsets: Vec<u32>,
+    edge_half_edges: Vec<u32>,
+    non_manifold: bool,
+    boundary: bool,
 }
 
-/// For each run of half-edges `a → b` in `a`'s list: the run `b → a` in `b`'s list (as a range
-/// of list positions), found by binary search on the parallel to-vertex array.
-fn opposite_run(mesh: &HalfEdgeMesh, out_to: &[u32], a: u32, b: u32) -> std::ops::Range<usize> {
-    let start = mesh.vertex_offsets[b as usize] as usize;
-    let end = mesh.vertex_offsets[b as usize + 1] as usize;
-    let tos = &out_to[start..end];
-    let first = tos.partition_point(|&t| t < a);
-    let len = tos[first..].partition_point(|&t| t == a);
-    start + first..start + first + len
+impl Edges {
+    fn with_capacity(num_half_edges: usize) -> Self {
+        let mut edge_offsets = Vec::with_capacity(num_half_edges / 2 + 2);
+        edge_offsets.push(0);
+        Edges {
+            he_edge: vec![u32::MAX; num_half_edges],
+            he_next_around_edge: vec![0; num_half_edges],
+            edge_vertices: Vec::with_capacity(num_half_edges / 2 + 1),
+            edge_offsets,
+            edge_half_edges: Vec::with_capacity(num_half_edges),
+            non_manifold: false,
+            boundary: false,
+        }
+    }
 }
 
-/// Calls `visit(a, b, run_ab, run_ba)` for every maximal run of half-edges `a → b`, with both
-/// runs as ranges into `vertex_half_edges`, when the run holds the edge's lowest half-edge.
-/// Each edge is visited exactly once, by the vertex that owns it.
-fn for_each_owned_edge(
-    mesh: &HalfEdgeMesh,
-    out_to: &[u32],
-    mut visit: impl FnMut(u32, u32, std::ops::Range<usize>, std::ops::Range<usize>),
-) {
-    for a in 0..mesh.num_vertices() {
-        let end = mesh.vertex_offsets[a + 1] as usize;
-        let mut i = mesh.vertex_offsets[a] as usize;
-        while i < end {
-            let b = out_to[i];
-            let run_end = i + out_to[i..end].partition_point(|&t| t == b);
-            let opposite = opposite_run(mesh, out_to, a as u32, b);
-            let lowest_here = mesh.vertex_half_edges[i];
-            let owned = opposite.is_empty() || mesh.vertex_half_edges[opposite.start] > lowest_here;
-            if owned {
-                visit(a as u32, b, i..run_end, opposite);
+/// Numbers the edges in the order of their lowest half-edge (the order in which a walk over the
+/// faces first meets them), lists each edge's half-edges in ascending order and links them into
+/// the cycle around the edge. Each edge is found from its lowest half-edge `h = a → b` by
+/// scanning the outgoing lists of `b` (and `a`) for the other half-edges between the two
+/// vertices; every later half-edge of the edge is then already numbered and skipped. Returns
+/// whether any edge is a boundary edge.
+fn build_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> bool {
+    let edges =
+        manifold_edges(mesh, he_to, out_to).unwrap_or_else(|| general_edges(mesh, he_to, out_to));
+    mesh.he_edge = edges.he_edge;
+    mesh.he_next_around_edge = edges.he_next_around_edge;
+    mesh.edge_vertices = edges.edge_vertices;
+    mesh.edge_offsets = edges.edge_offsets;
+    mesh.edge_half_edges = edges.edge_half_edges;
+    mesh.non_manifold_edges = edges.non_manifold;
+    edges.boundary
+}
+
+/// The common case, where every edge has one half-edge or two running opposite ways: one scan
+/// of `b`'s outgoing list finds the twin of `a → b`. `None` at the first sign of a non-manifold
+/// edge (a second twin, a twin already taken, two boundary half-edges the same way), for
+/// [`general_edges`] to number the same edges again.
+fn manifold_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Option<Edges> {
+    let mut edges = Edges::with_capacity(he_to.len());
+    let (offsets, out_he) = (&mesh.vertex_offsets, &mesh.vertex_half_edges);
+    let list_of = |v: u32| offsets[v as usize] as usize..offsets[v as usize + 1] as usize;
+    for (h, (&a, &b)) in mesh.he_from.iter().zip(he_to).enumerate() {
+        if edges.he_edge[h] != u32::MAX {
+            continue;
+        }
+        let h = h as u32;
+        let e = edges.edge_vertices.len() as u32;
+        edges.edge_vertices.push([a, b]);
+        edges.he_edge[h as usize] = e;
+        edges.edge_half_edges.push(h);
+        let list = list_of(b);
+        let mut twin = None;
+        for (&to, &g) in out_to[list.clone()].iter().zip(&out_he[list]) {
+            if to == a {
+                if twin.is_some() {
+                    return None;
+                }
+                twin = Some(g);
             }
-            i = run_end;
         }
+        match twin {
+            Some(g) => {
+                // A lower twin would have numbered `h` already; a numbered one is shared.
+                if g < h || edges.he_edge[g as usize] != u32::MAX {
+                    return None;
+                }
+                edges.he_edge[g as usize] = e;
+                edges.he_next_around_edge[h as usize] = g;
+                edges.he_next_around_edge[g as usize] = h;
+                edges.edge_half_edges.push(g);
+            }
+            None => {
+                let list = list_of(a);
+                if out_to[list].iter().filter(|&&to| to == b).count() > 1 {
+                    return None;
+                }
+                edges.he_next_around_edge[h as usize] = h;
+                edges.boundary = true;
+            }
+        }
+        edges.edge_offsets.push(edges.edge_half_edges.len() as u32);
     }
+    Some(edges)
 }
 
-/// Numbers edges in the order their owning vertices are visited (by owner vertex, then by the
-/// other vertex) and lists each edge's half-edges in ascending order, so the first is the lowest.
-fn build_edges(mesh: &mut HalfEdgeMesh, out_to: &[u32]) {
-    let num_half_edges = mesh.he_from.len();
-    let mut edge_vertices = Vec::with_capacity(num_half_edges / 2 + 1);
-    let mut edge_offsets = Vec::with_capacity(num_half_edges / 2 + 2);
-    edge_offsets.push(0u32);
-    let mut edge_half_edges = vec![0u32; num_half_edges];
-    let mut he_edge = vec![0u32; num_half_edges];
-    let mut he_next_around_edge = vec![0u32; num_half_edges];
-    let mut filled = 0usize;
-    let mut non_manifold = false;
-    for_each_owned_edge(mesh, out_to, |a, b, run, opposite| {
-        // Two half-edges the same way, or more than two in all (then one run has two or more).
-        non_manifold |= run.len() > 1 || opposite.len() > 1;
-        let e = edge_vertices.len() as u32;
-        edge_vertices.push([a, b]);
-        let list = &mut edge_half_edges[filled..filled + run.len() + opposite.len()];
-        filled += list.len();
-        edge_offsets.push(filled as u32);
-        merge_sorted(&mesh.vertex_half_edges[run], &mesh.vertex_half_edges[opposite], list);
-        for (i, &h) in list.iter().enumerate() {
-            he_edge[h as usize] = e;
-            he_next_around_edge[h as usize] = list[(i + 1) % list.len()];
+/// Any edge: all half-edges `a → b` from `a`'s list, then all `b → a` from `b`'s.
+fn general_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
+    let mut edges = Edges::with_capacity(he_to.len());
+    let (offsets, out_he) = (&mesh.vertex_offsets, &mesh.vertex_half_edges);
+    let list_of = |v: u32| offsets[v as usize] as usize..offsets[v as usize + 1] as usize;
+    for (h, (&a, &b)) in mesh.he_from.iter().zip(he_to).enumerate() {
+        if edges.he_edge[h] != u32::MAX {
+            continue;
         }
-    });
-    mesh.he_edge = he_edge;
-    mesh.he_next_around_edge = he_next_around_edge;
-    mesh.edge_vertices = edge_vertices;
-    mesh.edge_offsets = edge_offsets;
-    mesh.edge_half_edges = edge_half_edges;
-    mesh.non_manifold_edges = non_manifold;
-}
-
-fn merge_sorted(a: &[u32], b: &[u32], out: &mut [u32]) {
-    let (mut i, mut j) = (0, 0);
-    for slot in out.iter_mut() {
-        if j >= b.len() || (i < a.len() && a[i] < b[j]) {
-            *slot = a[i];
-            i += 1;
-        } else {
-            *slot = b[j];
-            j += 1;
+        let e = edges.edge_vertices.len() as u32;
+        edges.edge_vertices.push([a, b]);
+        let start = edges.edge_half_edges.len();
+        // The counting sort left each outgoing list ascending, so `h` (the lowest) comes first.
+        for (from, to) in [(a, b), (b, a)] {
+            let list = list_of(from);
+            for (&t, &g) in out_to[list.clone()].iter().zip(&out_he[list]) {
+                if t == to {
+                    edges.edge_half_edges.push(g);
+                }
+            }
         }
+        let list = &mut edges.edge_half_edges[start..];
+        list.sort_unstable();
+        edges.non_manifold |= list.len() > 2
+            || (list.len() == 2
+                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
+        edges.boundary |= list.len() == 1;
+        for (i, &g) in list.iter().enumerate() {
+            edges.he_edge[g as usize] = e;
+            edges.he_next_around_edge[g as usize] = list[(i + 1) % list.len()];
+        }
+        edges.edge_offsets.push(edges.edge_half_edges.len() as u32);
     }
+    edges
 }
 
 /// The seed's contract: `kth_half_edge_from(0)` is a boundary half-edge when the vertex has one.
@@ -311,4 +350,23 @@ fn counting_sort(keys: &[u32], buckets: usize) -> (Vec<u32>, Vec<u32>) {
         fill[k as usize] += 1;
     }
     (offsets, sorted)
+}
+
+/// [`counting_sort`], also carrying `payload[i]` along with each item `i`.
+fn counting_sort_with(
+    keys: &[u32],
+    buckets: usize,
+    payload: &[u32],
+) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+    let offsets = bucket_offsets(keys, buckets);
+    let mut fill = offsets.clone();
+    let mut sorted = vec![0u32; keys.len()];
+    let mut carried = vec![0u32; keys.len()];
+    for (i, (&k, &p)) in keys.iter().zip(payload).enumerate() {
+        let slot = fill[k as usize] as usize;
+        sorted[slot] = i as u32;
+        carried[slot] = p;
+        fill[k as usize] += 1;
+    }
+    (offsets, sorted, carried)
 }

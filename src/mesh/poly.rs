@@ -23,6 +23,21 @@ impl PolyMesh {
     /// A fan triangulation of every face, as a WebGL index buffer. Faces are assumed convex enough
     /// for a fan; refined faces always are.
     pub fn triangles(&self) -> Vec<u32> {
+        let faces = self.face_sizes.len();
+        // The refined meshes of the quad and triangle splits are uniform: one tight loop each.
+        let uniform = |n: u32| {
+            self.indices.len() == n as usize * faces && self.face_sizes.iter().all(|&s| s == n)
+        };
+        if uniform(3) {
+            return self.indices.clone();
+        }
+        if uniform(4) {
+            let mut out = vec![0u32; 6 * faces];
+            for (t, q) in out.chunks_exact_mut(6).zip(self.indices.chunks_exact(4)) {
+                t.copy_from_slice(&[q[0], q[1], q[2], q[0], q[2], q[3]]);
+            }
+            return out;
+        }
         let count: usize = self.face_sizes.iter().map(|&n| (n as usize).saturating_sub(2)).sum();
         let mut out = Vec::with_capacity(3 * count);
         let mut start = 0usize;
@@ -53,5 +68,32 @@ impl PolyMesh {
             return 0.0;
         }
         ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PolyMesh;
+
+    fn mesh(indices: &[u32], face_sizes: &[u32]) -> PolyMesh {
+        PolyMesh {
+            positions: vec![0.0; 3 * 8],
+            indices: indices.to_vec(),
+            face_sizes: face_sizes.to_vec(),
+        }
+    }
+
+    /// The fan of each face, written out by hand: (0, k, k + 1) for k = 1..n - 1.
+    #[test]
+    fn triangles_are_the_fan_of_each_face() {
+        let quads = mesh(&[0, 1, 2, 3, 4, 5, 6, 7], &[4, 4]);
+        assert_eq!(quads.triangles(), [0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7]);
+        let tris = mesh(&[0, 1, 2, 5, 6, 7], &[3, 3]);
+        assert_eq!(tris.triangles(), [0, 1, 2, 5, 6, 7]);
+        let mixed = mesh(&[0, 1, 2, 3, 4, 5, 6, 7, 0, 2, 4], &[5, 3, 3]);
+        assert_eq!(mixed.triangles(), [0, 1, 2, 0, 2, 3, 0, 3, 4, 5, 6, 7, 0, 2, 4]);
+        // Sizes that do not add up to the index count take the checked path and stop early.
+        let short = mesh(&[0, 1, 2, 3, 4, 5, 6], &[4, 4]);
+        assert_eq!(short.triangles(), [0, 1, 2, 0, 2, 3]);
     }
 }
