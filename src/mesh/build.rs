@@ -99,9 +99,11 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
             indices.len()
         )));
     }
-    // The face in which each vertex was last seen: a linear repeated-vertex check, so that one
-    // face with a million corners costs a million steps, not half a trillion.
-    let mut last_face = vec![u32::MAX; num_vertices];
+    // A repeated vertex: pairwise within a small face (no memory traffic), and for larger faces
+    // the face in which each vertex was last seen, a linear check, so that one face with a
+    // million corners costs a million steps, not half a trillion.
+    const PAIRWISE: usize = 8;
+    let mut last_face = Vec::new();
     let mut start = 0usize;
     for (f, &n) in face_sizes.iter().enumerate() {
         let n = n as usize;
@@ -109,19 +111,28 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
             return Err(Error::mesh(format!("face {f} has {n} vertices; a face needs at least 3")));
         }
         let face = &indices[start..start + n];
-        for (k, &v) in face.iter().enumerate() {
-            if v as usize >= num_vertices {
-                return Err(Error::mesh(format!(
-                    "face {f} (indices[{}]) refers to vertex {v}, but there are only {num_vertices} vertices (0..{})",
-                    start + k,
-                    num_vertices - 1
-                )));
+        if let Some(k) = face.iter().position(|&v| v as usize >= num_vertices) {
+            return Err(Error::mesh(format!(
+                "face {f} (indices[{}]) refers to vertex {}, but there are only {num_vertices} vertices (0..{})",
+                start + k,
+                face[k],
+                num_vertices - 1
+            )));
+        }
+        let repeated = if n <= PAIRWISE {
+            (1..n).find_map(|k| face[..k].contains(&face[k]).then_some(face[k]))
+        } else {
+            if last_face.is_empty() {
+                last_face = vec![u32::MAX; num_vertices];
             }
-            if std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32 {
-                return Err(Error::mesh(format!(
-                    "face {f} uses vertex {v} twice; a face must not repeat a vertex"
-                )));
-            }
+            face.iter()
+                .copied()
+                .find(|&v| std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32)
+        };
+        if let Some(v) = repeated {
+            return Err(Error::mesh(format!(
+                "face {f} uses vertex {v} twice; a face must not repeat a vertex"
+            )));
         }
         start += n;
     }
@@ -369,4 +380,32 @@ fn counting_sort_with(
         fill[k as usize] += 1;
     }
     (offsets, sorted, carried)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::from_faces;
+
+    fn error(indices: &[u32], sizes: &[u32]) -> String {
+        let positions = vec![0.0; 3 * 12];
+        from_faces(&positions, indices, sizes).err().map(|e| e.to_string()).unwrap_or_default()
+    }
+
+    /// Faces up to eight corners are checked pairwise, larger ones with the last-seen array;
+    /// both must find the repeat and name it, and neither may mistake a vertex shared by two
+    /// faces for one.
+    #[test]
+    fn repeated_vertices_are_found_in_small_and_large_faces() {
+        let ten: Vec<u32> = (0..10).collect();
+        let mut twice = ten.clone();
+        twice[7] = 3;
+        assert!(
+            error(&[ten.clone(), twice].concat(), &[10, 10]).contains("face 1 uses vertex 3 twice")
+        );
+        assert!(error(&[0, 1, 2, 3, 4, 5, 6, 2], &[8]).contains("face 0 uses vertex 2 twice"));
+        let mut reversed = ten.clone();
+        reversed.reverse();
+        let shared = [ten, reversed, vec![0, 1, 2, 3, 4, 5, 6, 7]].concat();
+        assert_eq!(error(&shared, &[10, 10, 8]), "");
+    }
 }
