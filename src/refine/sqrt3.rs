@@ -25,7 +25,15 @@
 //!
 //! So on a triangle mesh the faces of cell `c`'s half-edges are the contiguous `3c .. 3c + 2`,
 //! and every loop writes only its own entries.
+//!
+//! [`child_mesh`] gives the next level as a half-edge mesh without the general builder: each
+//! child vertex's outgoing half-edges and each child half-edge's twin follow from the parent's
+//! connectivity by the rules above, and the result is exactly the mesh
+//! `HalfEdgeMesh::from_poly(&refine(..))` would build (`tests/child_mesh.rs` checks this), so the
+//! next level's points, whose vertex sums depend on the child's vertex lists, are unchanged.
 
+use super::dqq;
+use crate::error::Result;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::rules::Sqrt3Rules;
 
@@ -93,21 +101,22 @@ fn first_child_vertices(mesh: &HalfEdgeMesh, split: &[u32]) -> (Vec<u32>, usize)
     (first, next_pair as usize)
 }
 
-/// One √3 level: the child mesh as flat arrays. `refine_boundary` splits boundary edges (every
-/// second level of a run, as Kobbelt and CGAL do).
-pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bool) -> PolyMesh {
-    let split = split_half_edges(mesh, refine_boundary);
-    let (first, num_child_vertices) = first_child_vertices(mesh, &split);
-
-    let mut positions = vec![0.0f32; 3 * num_child_vertices];
-    let points = positions.as_chunks_mut::<3>().0;
+/// Writes the child points, in child vertex order, into `points`.
+fn child_points<R: Sqrt3Rules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    refine_boundary: bool,
+    split: &[u32],
+    first: &[u32],
+    points: &mut [[f32; 3]],
+) {
     let (old, new) = points.split_at_mut(mesh.num_vertices());
     for (v, p) in old.iter_mut().enumerate() {
         *p = rules.vertex_point(mesh, v as u32, refine_boundary).to_array();
     }
     // Each cell writes its own one or two slots.
     let base = mesh.num_vertices();
-    for (c, (&b, &slot)) in split.iter().zip(&first).enumerate() {
+    for (c, (&b, &slot)) in split.iter().zip(first).enumerate() {
         let at = slot as usize - base;
         if b == NONE {
             if let Some(p) = new.get_mut(at) {
@@ -119,10 +128,206 @@ pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bo
             pair[1] = near_to.to_array();
         }
     }
+}
 
+/// One √3 level: the child mesh as flat arrays. `refine_boundary` splits boundary edges (every
+/// second level of a run, as Kobbelt and CGAL do).
+pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bool) -> PolyMesh {
+    let split = split_half_edges(mesh, refine_boundary);
+    let (first, num_child_vertices) = first_child_vertices(mesh, &split);
+    let mut positions = vec![0.0f32; 3 * num_child_vertices];
+    let points = positions.as_chunks_mut::<3>().0;
+    child_points(mesh, rules, refine_boundary, &split, &first, points);
     let indices = child_face_indices(mesh, &split, &first);
     let face_sizes = vec![3; mesh.num_half_edges()];
     PolyMesh { positions, indices, face_sizes }
+}
+
+/// One √3 level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
+/// written by index arithmetic: the outgoing half-edges of each child vertex (below) and the
+/// twin of each child half-edge ([`child_twins`]), from which [`dqq::manifold_mesh`] numbers
+/// the edges; no sort or search over the child mesh. Three kinds of parent take the general
+/// path, which is the only error: meshes `check` refuses, meshes with a face that is not a
+/// triangle, and the rare two-triangle "pillow" (an interior vertex of valence 2; only a closed
+/// pair of triangles has one), whose flipped edges all join the same two centroids, so that the
+/// builder merges them into one non-manifold edge.
+pub fn child_mesh<R: Sqrt3Rules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    refine_boundary: bool,
+) -> Result<HalfEdgeMesh> {
+    let nh = mesh.num_half_edges();
+    let triangles = nh == 3 * mesh.num_cells();
+    if mesh.is_non_manifold() || !triangles || nh == 0 || has_pillow(mesh) {
+        return HalfEdgeMesh::from_poly(&refine(mesh, rules, refine_boundary));
+    }
+    let split = split_half_edges(mesh, refine_boundary);
+    let (first, num_child_vertices) = first_child_vertices(mesh, &split);
+    let mut positions = vec![[0.0f32; 3]; num_child_vertices];
+    child_points(mesh, rules, refine_boundary, &split, &first, &mut positions);
+    let he_from = child_face_indices(mesh, &split, &first);
+    let cell_offsets = (0..=nh as u32).map(|c| 3 * c).collect();
+    let he_cell = (0..3 * nh as u32).map(|h| h / 3).collect();
+
+    let twin = |h: u32| mesh.he_next_around_edge[h as usize];
+    let mut vertex_offsets = Vec::with_capacity(num_child_vertices + 1);
+    let mut out = Vec::with_capacity(3 * nh);
+    vertex_offsets.push(0u32);
+    // An old vertex leaves each child face it is in: the face of each of its parent
+    // half-edges `k` but a split one (the middle triangle); that of the boundary half-edge
+    // before `k`, unsplit, `(w, y, a)`; and the middle triangle when `k` leads to the split
+    // half-edge of its cell (`y` is the split triangle's third vertex).
+    for y in 0..mesh.num_vertices() as u32 {
+        let start = out.len();
+        for &k in mesh.out_half_edges(y) {
+            let b = split[k as usize / 3];
+            let p = prev(k);
+            if b != k {
+                out.push(3 * k);
+            }
+            if twin(p) == p && b != p {
+                out.push(3 * p + 1);
+            }
+            if b == next(k) {
+                out.push(3 * b + 2);
+            }
+        }
+        dqq::insertion_sort(&mut out[start..]);
+        vertex_offsets.push(out.len() as u32);
+    }
+    // A centroid leaves the face of each of its cell's half-edges (towards their from-vertex)
+    // and of each twin of them (towards the point across).
+    for (c, _) in split.iter().enumerate().filter(|(_, &b)| b == NONE) {
+        let start = out.len();
+        for k in 3 * c as u32..3 * c as u32 + 3 {
+            out.push(3 * k + 2);
+            if twin(k) != k {
+                out.push(3 * twin(k) + 1);
+            }
+        }
+        dqq::insertion_sort(&mut out[start..]);
+        vertex_offsets.push(out.len() as u32);
+    }
+    // The points near `t` and `s` on a split `t → s` of triangle `(t, s, x)`: each leaves the
+    // middle triangle, the face of the half-edge it is the point of, and that half-edge's twin.
+    for &b in split.iter().filter(|&&b| b != NONE) {
+        for (own, k) in [(3 * b, prev(b)), (3 * b + 1, next(b))] {
+            let start = out.len();
+            out.extend_from_slice(&[own, 3 * k + 2]);
+            if twin(k) != k {
+                out.push(3 * twin(k) + 1);
+            }
+            dqq::insertion_sort(&mut out[start..]);
+            vertex_offsets.push(out.len() as u32);
+        }
+    }
+    debug_assert_eq!(out.len(), 3 * nh);
+    let he_twin = child_twins(mesh, &split);
+    Ok(dqq::manifold_mesh(dqq::ManifoldParts {
+        positions,
+        cell_offsets,
+        he_from,
+        he_cell,
+        he_twin,
+        vertex_offsets,
+        vertex_half_edges: out,
+    }))
+}
+
+/// Triangles only: the next and previous half-edges in a cell, by arithmetic.
+#[inline]
+fn next(h: u32) -> u32 {
+    if h % 3 == 2 {
+        h - 2
+    } else {
+        h + 1
+    }
+}
+
+#[inline]
+fn prev(h: u32) -> u32 {
+    if h.is_multiple_of(3) {
+        h + 2
+    } else {
+        h - 1
+    }
+}
+
+/// The twin of every child half-edge (itself on the boundary), three per parent half-edge `k`,
+/// for child face `k` in the notation of the module docs: `a(k)` is the point across from `k`,
+/// `(t, s, x)` a triangle whose half-edge `b = t → s` is split into `t, p_t, p_s, s`.
+fn child_twins(mesh: &HalfEdgeMesh, split: &[u32]) -> Vec<u32> {
+    let twin = |h: u32| mesh.he_next_around_edge[h as usize];
+    // The twin of `3k + 2`, from `a(k)` back to `k`'s from-vertex: in an unsplit cell, in the
+    // face of the half-edge before `k` (across its edge when that edge was flipped); in a
+    // split cell, the boundary piece `p_s → s`, or `x → p_t` in the middle triangle.
+    let into_from = |k: u32| {
+        let b = split[k as usize / 3];
+        if b == NONE {
+            let p = prev(k);
+            if twin(p) != p {
+                3 * twin(p)
+            } else {
+                3 * p + 1
+            }
+        } else if k == next(b) {
+            3 * k + 2
+        } else {
+            3 * b + 2
+        }
+    };
+    let mut twins = vec![0u32; 3 * mesh.num_half_edges()];
+    for (k, face) in twins.chunks_exact_mut(3).enumerate() {
+        let k = k as u32;
+        let b = split[k as usize / 3];
+        let j = twin(k);
+        let twins_of_face = if b == k {
+            // The middle triangle (p_t, p_s, x): the new boundary piece, then p_s → x, whose
+            // twin is in the face across s → x (or that face itself at a boundary), and
+            // x → p_t, whose twin is in the face of x → t.
+            let n = next(k);
+            let across_n = if twin(n) != n { 3 * twin(n) } else { 3 * n + 1 };
+            [3 * k, across_n, 3 * prev(k) + 2]
+        } else if j != k {
+            // Flipped: (u, a(j), a(k)). u → a(j) comes back in `j`'s cell: from its point to
+            // `j`'s to-vertex, in the face after `j` when that cell is unsplit; the middle
+            // triangle's p_s → x, or the boundary piece t → p_t, when it is split.
+            let bj = split[j as usize / 3];
+            let back = if bj == NONE {
+                3 * next(j) + 2
+            } else if j == next(bj) {
+                3 * bj + 1
+            } else {
+                3 * k
+            };
+            [back, 3 * j + 1, into_from(k)]
+        } else {
+            // A boundary edge kept: (u, v, a(k)); v → a(k) comes back in the face after `k`,
+            // or, in a split cell, is x → p_s of the middle triangle or the boundary piece
+            // t → p_t.
+            let back = if b == NONE {
+                3 * next(k) + 2
+            } else if k == next(b) {
+                3 * b + 1
+            } else {
+                3 * k + 1
+            };
+            [3 * k, back, into_from(k)]
+        };
+        face.copy_from_slice(&twins_of_face);
+    }
+    twins
+}
+
+/// True when some interior vertex has two faces: on a 2-manifold triangle mesh, a closed pair
+/// of triangles on the same three vertices.
+fn has_pillow(mesh: &HalfEdgeMesh) -> bool {
+    mesh.vertex_offsets.windows(2).any(|w| {
+        w[1] - w[0] == 2 && {
+            let h = mesh.vertex_half_edges[w[0] as usize];
+            mesh.he_next_around_edge[h as usize] != h
+        }
+    })
 }
 
 /// The point of `h`'s cell across from `h` after the fan split (see the module notes).
