@@ -503,17 +503,13 @@ enum Level {
 }
 
 fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> Level {
-    let count = pqq::num_child_vertices(&mesh);
     if last {
-        // Written straight into the output array: no copy of the largest buffer.
-        let mut positions = vec![0.0f32; 3 * count];
-        pqq::refine_points(&mesh, rules, positions.as_chunks_mut::<3>().0);
+        let positions = pqq::refine_points(&mesh, rules).into_flattened();
         let indices = pqq::child_face_indices(&mesh);
         let face_sizes = vec![4; mesh.num_half_edges()];
         return Level::Poly(PolyMesh { positions, indices, face_sizes });
     }
-    let mut positions = vec![[0.0f32; 3]; count];
-    pqq::refine_points(&mesh, rules, &mut positions);
+    let positions = pqq::refine_points(&mesh, rules);
     Level::Mesh(pqq::child_mesh(&mesh, positions))
 }
 
@@ -525,17 +521,14 @@ fn quad_split_tagged<R: QuadSplitRules>(
     tags: &LevelTags,
     last: bool,
 ) -> (Level, Option<LevelTags>) {
-    let count = pqq::num_child_vertices(&mesh);
     if last {
-        let mut positions = vec![0.0f32; 3 * count];
-        pqq::refine_points(&mesh, rules, positions.as_chunks_mut::<3>().0);
+        let positions = pqq::refine_points(&mesh, rules).into_flattened();
         let indices = pqq::child_face_indices(&mesh);
         // Child cell h comes from parent half-edge h's cell.
         let hole = |f: usize| tags.is_hole(mesh.he_cell[f]);
         return (Level::Poly(without_holes(positions, indices, 4, tags.has_holes(), hole)), None);
     }
-    let mut positions = vec![[0.0f32; 3]; count];
-    pqq::refine_points(&mesh, rules, &mut positions);
+    let positions = pqq::refine_points(&mesh, rules);
     let child = pqq::child_mesh(&mesh, positions);
     let child_tags = pqq::child_tags(&mesh, &child, tags);
     (Level::Mesh(child), Some(child_tags))
@@ -543,14 +536,12 @@ fn quad_split_tagged<R: QuadSplitRules>(
 
 fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R, last: bool) -> Level {
     if last {
-        let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
-        ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
+        let positions = ptq::refine_points(mesh, rules).into_flattened();
         let indices = ptq::child_face_indices(mesh);
         let face_sizes = vec![3; indices.len() / 3];
         return Level::Poly(PolyMesh { positions, indices, face_sizes });
     }
-    let mut positions = vec![[0.0f32; 3]; ptq::num_child_vertices(mesh)];
-    ptq::refine_points(mesh, rules, &mut positions);
+    let positions = ptq::refine_points(mesh, rules);
     Level::Mesh(ptq::child_mesh(mesh, positions))
 }
 
@@ -563,15 +554,13 @@ fn tri_split_tagged<R: TriSplitRules>(
     last: bool,
 ) -> (Level, Option<LevelTags>) {
     if last {
-        let mut positions = vec![0.0f32; 3 * ptq::num_child_vertices(mesh)];
-        ptq::refine_points(mesh, rules, positions.as_chunks_mut::<3>().0);
+        let positions = ptq::refine_points(mesh, rules).into_flattened();
         let indices = ptq::child_face_indices(mesh);
         // Child triangle f comes from parent triangle f / 4.
         let hole = |f: usize| tags.is_hole((f / 4) as u32);
         return (Level::Poly(without_holes(positions, indices, 3, tags.has_holes(), hole)), None);
     }
-    let mut positions = vec![[0.0f32; 3]; ptq::num_child_vertices(mesh)];
-    ptq::refine_points(mesh, rules, &mut positions);
+    let positions = ptq::refine_points(mesh, rules);
     let child = ptq::child_mesh(mesh, positions);
     let child_tags = ptq::child_tags(mesh, &child, tags);
     (Level::Mesh(child), Some(child_tags))

@@ -84,11 +84,11 @@ impl TriSplitRules for Butterfly {
 
 fn butterfly(mesh: &PolyMesh) -> PolyMesh {
     let he = HalfEdgeMesh::from_poly(mesh).unwrap();
-    let mut points = vec![[0.0f32; 3]; ptq::num_child_vertices(&he)];
-    ptq::refine_points(&he, &Butterfly, &mut points);
+    let points = ptq::refine_points(&he, &Butterfly);
+    assert_eq!(points.len(), ptq::num_child_vertices(&he));
     let indices = ptq::child_face_indices(&he);
     let face_sizes = vec![3; indices.len() / 3];
-    PolyMesh { positions: points.as_flattened().to_vec(), indices, face_sizes }
+    PolyMesh { positions: points.into_flattened(), indices, face_sizes }
 }
 
 /// An interpolating scheme keeps the old vertices where they are.

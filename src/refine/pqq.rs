@@ -31,36 +31,31 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
     mesh.num_vertices() + mesh.num_cells() + mesh.num_edges()
 }
 
-/// Writes the new positions, in child vertex order, into `points` (of length
-/// [`num_child_vertices`]), computed by the host's stencil policy `rules`.
-pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R, points: &mut [[f32; 3]]) {
-    let (v, f) = (mesh.num_vertices(), mesh.num_cells());
-    let (vertex_points, rest) = points.split_at_mut(v);
-    let (face_points, edge_points) = rest.split_at_mut(f);
-    for (c, p) in face_points.iter_mut().enumerate() {
-        *p = rules.face_point(mesh, c as u32).to_array();
-    }
-    let face_points = &*face_points;
-    for (i, p) in edge_points.iter_mut().enumerate() {
-        *p = rules.edge_point(mesh, face_points, i as u32).to_array();
-    }
-    for (i, p) in vertex_points.iter_mut().enumerate() {
-        *p = rules.vertex_point(mesh, face_points, i as u32).to_array();
-    }
+/// The new positions in child vertex order (`V + F + E` of them), computed by the host's stencil
+/// policy `rules`. Built by pushes rather than zeroed and overwritten, which on wasm saves a
+/// pass over the largest array.
+pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
+    let (v, f, e) = (mesh.num_vertices() as u32, mesh.num_cells() as u32, mesh.num_edges() as u32);
+    let face_points: Vec<[f32; 3]> = (0..f).map(|c| rules.face_point(mesh, c).to_array()).collect();
+    let mut points = Vec::with_capacity(num_child_vertices(mesh));
+    points.extend((0..v).map(|i| rules.vertex_point(mesh, &face_points, i).to_array()));
+    points.extend_from_slice(&face_points);
+    points.extend((0..e).map(|i| rules.edge_point(mesh, &face_points, i).to_array()));
+    points
 }
 
 /// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     let (v, f) = (mesh.num_vertices() as u32, mesh.num_cells() as u32);
     let edge_base = v + f;
-    let mut indices = vec![0u32; 4 * mesh.num_half_edges()];
+    let mut indices = Vec::with_capacity(4 * mesh.num_half_edges());
     for (c, range) in mesh.cell_offsets.windows(2).enumerate() {
         let (start, end) = (range[0] as usize, range[1] as usize);
         let face_point = v + c as u32;
         let mut prev_edge = mesh.he_edge[end - 1];
         for h in start..end {
             let edge = mesh.he_edge[h];
-            indices[4 * h..4 * h + 4].copy_from_slice(&[
+            indices.extend_from_slice(&[
                 mesh.he_from[h],
                 edge_base + edge,
                 face_point,

@@ -28,26 +28,21 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
     mesh.num_vertices() + mesh.num_edges()
 }
 
-/// Writes the new positions in child vertex order into `points`.
-pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R, points: &mut [[f32; 3]]) {
-    let (vertex_points, edge_points) = points.split_at_mut(mesh.num_vertices());
-    for (e, p) in edge_points.iter_mut().enumerate() {
-        *p = rules.edge_point(mesh, e as u32).to_array();
-    }
-    for (v, p) in vertex_points.iter_mut().enumerate() {
-        *p = rules.vertex_point(mesh, v as u32).to_array();
-    }
+/// The new positions in child vertex order (`V + E` of them), built by pushes rather than zeroed
+/// and overwritten.
+pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
+    let (v, e) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
+    let vertex_points = (0..v).map(|i| rules.vertex_point(mesh, i).to_array());
+    vertex_points.chain((0..e).map(|i| rules.edge_point(mesh, i).to_array())).collect()
 }
 
 /// The child triangles' vertex indices, 12 per parent triangle. The mesh must be all triangles.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     let base = mesh.num_vertices() as u32;
-    let mut indices = vec![0u32; 4 * mesh.num_half_edges()];
-    for (t, out) in indices.chunks_exact_mut(12).enumerate() {
-        let h = 3 * t;
-        let [a, b, c] = [mesh.he_from[h], mesh.he_from[h + 1], mesh.he_from[h + 2]];
-        let edges = [0, 1, 2].map(|k| base + mesh.he_edge[h + k]);
-        out.copy_from_slice(&triangle_children([a, b, c], edges));
+    let mut indices = Vec::with_capacity(4 * mesh.num_half_edges());
+    let corners = mesh.he_from.as_chunks::<3>().0;
+    for (&triangle, edges) in corners.iter().zip(mesh.he_edge.as_chunks::<3>().0) {
+        indices.extend_from_slice(&triangle_children(triangle, edges.map(|e| base + e)));
     }
     indices
 }
