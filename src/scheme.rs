@@ -477,11 +477,20 @@ pub fn subdivide_mesh_with_tags(
                 } else {
                     DualBoundary::Chaikin
                 };
-                (Level::Poly(dqq::refine(&mesh, &DooSabin, mode)), None)
+                if last || mesh.num_cells() == 0 {
+                    (Level::Poly(dqq::refine(&mesh, &DooSabin, mode)), None)
+                } else {
+                    (Level::Mesh(dqq::child_mesh(&mesh, &DooSabin, mode)?), None)
+                }
             }
             (Scheme::Sqrt3, _) => {
                 let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
-                (Level::Poly(sqrt3::refine(&mesh, &Sqrt3 { boundary }, refine_boundary)), None)
+                let rules = Sqrt3 { boundary };
+                if last {
+                    (Level::Poly(sqrt3::refine(&mesh, &rules, refine_boundary)), None)
+                } else {
+                    (Level::Mesh(sqrt3::child_mesh(&mesh, &rules, refine_boundary)?), None)
+                }
             }
         };
         level_tags = next_tags;
