@@ -39,12 +39,13 @@ pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f
 /// The child triangles' vertex indices, 12 per parent triangle. The mesh must be all triangles.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     let base = mesh.num_vertices() as u32;
-    let mut indices = Vec::with_capacity(4 * mesh.num_half_edges());
     let corners = mesh.he_from.as_chunks::<3>().0;
-    for (&triangle, edges) in corners.iter().zip(mesh.he_edge.as_chunks::<3>().0) {
-        indices.extend_from_slice(&triangle_children(triangle, edges.map(|e| base + e)));
-    }
-    indices
+    let children: Vec<[u32; 12]> = corners
+        .iter()
+        .zip(mesh.he_edge.as_chunks::<3>().0)
+        .map(|(&triangle, edges)| triangle_children(triangle, edges.map(|e| base + e)))
+        .collect();
+    children.into_flattened()
 }
 
 /// The four children of triangle `(a, b, c)` whose edges `ab`, `bc`, `ca` have the edge points
