@@ -184,14 +184,24 @@ fn build_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> bool {
     edges.boundary
 }
 
+/// The outgoing half-edges of `v` with their to-vertices (`out_to` runs parallel to the mesh's
+/// outgoing lists).
+fn out_with_to<'a>(
+    mesh: &'a HalfEdgeMesh,
+    out_to: &'a [u32],
+    v: u32,
+) -> impl Iterator<Item = (u32, u32)> + 'a {
+    let range =
+        mesh.vertex_offsets[v as usize] as usize..mesh.vertex_offsets[v as usize + 1] as usize;
+    out_to[range].iter().copied().zip(mesh.out_half_edges(v).iter().copied())
+}
+
 /// The common case, where every edge has one half-edge or two running opposite ways: one scan
 /// of `b`'s outgoing list finds the twin of `a → b`. `None` at the first sign of a non-manifold
 /// edge (a second twin, a twin already taken, two boundary half-edges the same way), for
 /// [`general_edges`] to number the same edges again.
 fn manifold_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Option<Edges> {
     let mut edges = Edges::with_capacity(he_to.len());
-    let (offsets, out_he) = (&mesh.vertex_offsets, &mesh.vertex_half_edges);
-    let list_of = |v: u32| offsets[v as usize] as usize..offsets[v as usize + 1] as usize;
     for (h, (&a, &b)) in mesh.he_from.iter().zip(he_to).enumerate() {
         if edges.he_edge[h] != u32::MAX {
             continue;
@@ -201,9 +211,8 @@ fn manifold_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Option<
         edges.edge_vertices.push([a, b]);
         edges.he_edge[h as usize] = e;
         edges.edge_half_edges.push(h);
-        let list = list_of(b);
         let mut twin = None;
-        for (&to, &g) in out_to[list.clone()].iter().zip(&out_he[list]) {
+        for (to, g) in out_with_to(mesh, out_to, b) {
             if to == a {
                 if twin.is_some() {
                     return None;
@@ -223,8 +232,7 @@ fn manifold_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Option<
                 edges.edge_half_edges.push(g);
             }
             None => {
-                let list = list_of(a);
-                if out_to[list].iter().filter(|&&to| to == b).count() > 1 {
+                if out_with_to(mesh, out_to, a).filter(|&(to, _)| to == b).count() > 1 {
                     return None;
                 }
                 edges.he_next_around_edge[h as usize] = h;
@@ -239,8 +247,6 @@ fn manifold_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Option<
 /// Any edge: all half-edges `a → b` from `a`'s list, then all `b → a` from `b`'s.
 fn general_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
     let mut edges = Edges::with_capacity(he_to.len());
-    let (offsets, out_he) = (&mesh.vertex_offsets, &mesh.vertex_half_edges);
-    let list_of = |v: u32| offsets[v as usize] as usize..offsets[v as usize + 1] as usize;
     for (h, (&a, &b)) in mesh.he_from.iter().zip(he_to).enumerate() {
         if edges.he_edge[h] != u32::MAX {
             continue;
@@ -250,12 +256,8 @@ fn general_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
         let start = edges.edge_half_edges.len();
         // The counting sort left each outgoing list ascending, so `h` (the lowest) comes first.
         for (from, to) in [(a, b), (b, a)] {
-            let list = list_of(from);
-            for (&t, &g) in out_to[list.clone()].iter().zip(&out_he[list]) {
-                if t == to {
-                    edges.edge_half_edges.push(g);
-                }
-            }
+            let same_pair = out_with_to(mesh, out_to, from).filter(|&(t, _)| t == to);
+            edges.edge_half_edges.extend(same_pair.map(|(_, g)| g));
         }
         let list = &mut edges.edge_half_edges[start..];
         list.sort_unstable();

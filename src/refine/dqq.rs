@@ -259,11 +259,20 @@ fn child_points<R: CornerRules>(
 /// One dual level: the child mesh as flat arrays. `check` must have passed.
 pub fn refine<R: CornerRules>(mesh: &HalfEdgeMesh, rules: &R, boundary: DualBoundary) -> PolyMesh {
     let layout = Layout::new(mesh, boundary);
-    let mut positions = vec![0.0f32; 3 * layout.num_child_vertices(mesh)];
-    child_points(mesh, rules, &layout, positions.as_chunks_mut::<3>().0);
-    let indices = layout.face_indices(mesh);
+    let (positions, indices) = points_and_faces(mesh, rules, &layout);
     let face_sizes = layout.face_sizes(mesh);
-    PolyMesh { positions, indices, face_sizes }
+    PolyMesh { positions: positions.into_flattened(), indices, face_sizes }
+}
+
+/// The child positions and face list of one dual level, shared by both outputs.
+fn points_and_faces<R: CornerRules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    layout: &Layout,
+) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let mut positions = vec![[0.0f32; 3]; layout.num_child_vertices(mesh)];
+    child_points(mesh, rules, layout, &mut positions);
+    (positions, layout.face_indices(mesh))
 }
 
 /// One dual level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
@@ -279,9 +288,7 @@ pub fn child_mesh<R: CornerRules>(
         return HalfEdgeMesh::from_poly(&refine(mesh, rules, boundary));
     }
     let layout = Layout::new(mesh, boundary);
-    let mut positions = vec![[0.0f32; 3]; layout.num_child_vertices(mesh)];
-    child_points(mesh, rules, &layout, &mut positions);
-    let he_from = layout.face_indices(mesh);
+    let (positions, he_from) = points_and_faces(mesh, rules, &layout);
 
     let (nh, nf) = (mesh.num_half_edges(), mesh.num_cells());
     let mut cell_offsets = Vec::with_capacity(layout.num_child_cells(mesh) + 1);

@@ -134,13 +134,23 @@ fn child_points<R: Sqrt3Rules>(
 /// second level of a run, as Kobbelt and CGAL do).
 pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bool) -> PolyMesh {
     let split = split_half_edges(mesh, refine_boundary);
-    let (first, num_child_vertices) = first_child_vertices(mesh, &split);
-    let mut positions = vec![0.0f32; 3 * num_child_vertices];
-    let points = positions.as_chunks_mut::<3>().0;
-    child_points(mesh, rules, refine_boundary, &split, &first, points);
-    let indices = child_face_indices(mesh, &split, &first);
+    let (positions, indices) = points_and_faces(mesh, rules, refine_boundary, &split);
     let face_sizes = vec![3; mesh.num_half_edges()];
-    PolyMesh { positions, indices, face_sizes }
+    PolyMesh { positions: positions.into_flattened(), indices, face_sizes }
+}
+
+/// The child positions and face list of one √3 level, shared by both outputs.
+fn points_and_faces<R: Sqrt3Rules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    refine_boundary: bool,
+    split: &[u32],
+) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let (first, num_child_vertices) = first_child_vertices(mesh, split);
+    let mut positions = vec![[0.0f32; 3]; num_child_vertices];
+    child_points(mesh, rules, refine_boundary, split, &first, &mut positions);
+    let indices = child_face_indices(mesh, split, &first);
+    (positions, indices)
 }
 
 /// One √3 level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
@@ -162,10 +172,8 @@ pub fn child_mesh<R: Sqrt3Rules>(
         return HalfEdgeMesh::from_poly(&refine(mesh, rules, refine_boundary));
     }
     let split = split_half_edges(mesh, refine_boundary);
-    let (first, num_child_vertices) = first_child_vertices(mesh, &split);
-    let mut positions = vec![[0.0f32; 3]; num_child_vertices];
-    child_points(mesh, rules, refine_boundary, &split, &first, &mut positions);
-    let he_from = child_face_indices(mesh, &split, &first);
+    let (positions, he_from) = points_and_faces(mesh, rules, refine_boundary, &split);
+    let num_child_vertices = positions.len();
     let cell_offsets = (0..=nh as u32).map(|c| 3 * c).collect();
     let he_cell = (0..3 * nh as u32).map(|h| h / 3).collect();
 

@@ -6,7 +6,7 @@
 use super::*;
 
 #[path = "bad_inputs.rs"]
-mod catalogue;
+pub(super) mod catalogue;
 
 use catalogue::{Case, Expect, Input, JsField, JsMesh, Stage, Val};
 

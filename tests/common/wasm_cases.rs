@@ -10,25 +10,9 @@ use wasm_bindgen_test::wasm_bindgen_test;
 // ---------------------------------------------------------------------------------------------
 // Helpers
 
-/// The cube with corners ±1; vertex `i` has x, y, z signs from bits 0, 1, 2 of `i`.
-fn cube_arrays() -> (Vec<f32>, Vec<u32>, Vec<u32>) {
-    let mut positions = Vec::new();
-    for i in 0..8 {
-        for bit in 0..3 {
-            positions.push(if i >> bit & 1 == 1 { 1.0 } else { -1.0 });
-        }
-    }
-    #[rustfmt::skip]
-    let indices = vec![
-        0, 2, 3, 1, // z-
-        4, 5, 7, 6, // z+
-        0, 1, 5, 4, // y-
-        2, 6, 7, 3, // y+
-        0, 4, 6, 2, // x-
-        1, 3, 7, 5, // x+
-    ];
-    (positions, indices, vec![4; 6])
-}
+// The cube with corners ±1 of the bad-input catalogue (vertex `i` has x, y, z signs from bits
+// 0, 1, 2 of `i`).
+use bad_inputs::catalogue::cube as cube_arrays;
 
 /// A closed tetrahedron as a plain triangle list.
 fn tetrahedron_arrays() -> (Vec<f32>, Vec<u32>) {
