@@ -166,8 +166,7 @@ pub fn subdivide(
     let (options, tags) = read_options(options).map_err(js_error)?;
     let mesh = read_mesh(mesh).map_err(js_error)?;
     let refined = scheme::subdivide_with_tags(&mesh, &options, &tags).map_err(js_error)?;
-    let triangles = refined.triangles();
-    mesh_object(&refined, Some(&triangles))
+    mesh_object(&refined, true)
 }
 
 /// Parses the text of a Wavefront OBJ file: `v` and `f` lines, and OpenSubdiv's `t` tag lines
@@ -186,7 +185,7 @@ pub fn read_obj(
         ))
     })?;
     let obj = io::read_obj_with_tags(&text).map_err(js_error)?;
-    let object = mesh_object(&obj.mesh, None)?;
+    let object = mesh_object(&obj.mesh, false)?;
     set_field(&object, "tags", &obj_tags_object(&obj.tags, obj.boundary)?)?;
     Ok(object)
 }
@@ -278,7 +277,7 @@ pub fn shape_names() -> Array {
 pub fn shape(#[wasm_bindgen(unchecked_param_type = "string")] name: &JsValue) -> JsResult<JsValue> {
     let mesh = name.as_string().and_then(|name| crate::shapes::demo_shape(&name));
     match mesh {
-        Some(mesh) => mesh_object(&mesh, None),
+        Some(mesh) => mesh_object(&mesh, false),
         None => Err(JsError::new(&format!(
             "unknown shape {}; use one of {}",
             describe(name),
@@ -744,15 +743,30 @@ fn is_error(value: &JsValue) -> bool {
 }
 
 /// A plain object of fresh typed arrays (copies, never views of wasm memory).
-fn mesh_object(mesh: &PolyMesh, triangles: Option<&[u32]>) -> JsResult<JsValue> {
+fn mesh_object(mesh: &PolyMesh, with_triangles: bool) -> JsResult<JsValue> {
     let object = Object::new();
     set_field(&object, "positions", &Float32Array::from(&mesh.positions[..]))?;
     set_field(&object, "indices", &Uint32Array::from(&mesh.indices[..]))?;
     set_field(&object, "faceSizes", &Uint32Array::from(&mesh.face_sizes[..]))?;
-    if let Some(triangles) = triangles {
-        set_field(&object, "triangles", &Uint32Array::from(triangles))?;
+    if with_triangles {
+        set_field(&object, "triangles", &triangles_array(mesh))?;
     }
     Ok(object.into())
+}
+
+/// The fan triangulation, copied into the JS array piece by piece from a cache-sized buffer, so
+/// that the whole fan is never written to wasm memory and read back.
+fn triangles_array(mesh: &PolyMesh) -> Uint32Array {
+    let total = mesh.num_triangle_indices();
+    let array = Uint32Array::new_with_length(total as u32);
+    let mut at = 0usize;
+    mesh.triangle_chunks(|chunk| {
+        // Never past the end, even for sizes that do not add up (copy_from needs equal lengths).
+        let n = chunk.len().min(total - at);
+        array.subarray(at as u32, (at + n) as u32).copy_from(&chunk[..n]);
+        at += n;
+    });
+    array
 }
 
 fn set_field(object: &JsValue, key: &str, value: &JsValue) -> JsResult<()> {

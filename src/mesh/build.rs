@@ -1,7 +1,7 @@
 //! Building a [`HalfEdgeMesh`] from flat arrays: validation first, then connectivity by a counting
 //! sort on the from-vertex and valence-sized scans, with no hash map and no comparison sort.
 
-use super::HalfEdgeMesh;
+use super::{uniform_cell_size, HalfEdgeMesh};
 use crate::error::{Error, Result};
 
 /// The largest half-edge count a base mesh may have, so that four refinement levels of index
@@ -46,6 +46,7 @@ pub(super) fn from_faces(
         he_cell,
         ..HalfEdgeMesh::default()
     };
+    mesh.cell_size = uniform_cell_size(&mesh.cell_offsets);
     // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
     let (vertex_offsets, vertex_half_edges, out_to) =
         counting_sort_with(indices, num_vertices, &he_to);
@@ -71,7 +72,10 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     if positions.is_empty() {
         return Err(Error::mesh("positions is empty; a mesh needs at least one vertex"));
     }
-    if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
+    // Whole-array checks that vectorise (no early exit) come first; only a failure pays for
+    // finding the culprit.
+    if !positions.iter().fold(true, |ok, x| ok & x.is_finite()) {
+        let i = positions.iter().position(|x| !x.is_finite()).unwrap_or_default();
         return Err(Error::mesh(format!(
             "vertex {} has coordinate {} = {}; every coordinate must be a finite number",
             i / 3,
@@ -99,7 +103,13 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
             indices.len()
         )));
     }
-    // A repeated vertex: pairwise within a small face (no memory traffic), and for larger faces
+    if indices.iter().fold(0, |m, &v| m.max(v)) < num_vertices as u32
+        && uniform_faces_have_distinct_corners(indices, face_sizes)
+    {
+        return Ok(());
+    }
+    // Face by face, reporting the first face at fault. A repeated vertex: pairwise within a
+    // small face (no memory traffic), and for larger faces
     // the face in which each vertex was last seen, a linear check, so that one face with a
     // million corners costs a million steps, not half a trillion.
     const PAIRWISE: usize = 8;
@@ -137,6 +147,24 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
         start += n;
     }
     Ok(())
+}
+
+/// True for an all-triangle or all-quad mesh whose faces never repeat a vertex; false for
+/// anything else, which the face-by-face check then examines.
+fn uniform_faces_have_distinct_corners(indices: &[u32], face_sizes: &[u32]) -> bool {
+    // Branch-free folds, so that valid input (the common case) runs vectorised.
+    let all_sized = |n: u32| face_sizes.iter().fold(true, |ok, &s| ok & (s == n));
+    if indices.len() == 4 * face_sizes.len() && all_sized(4) {
+        let quads = indices.as_chunks::<4>().0.iter();
+        return quads.fold(true, |ok, &[a, b, c, d]| {
+            ok & (a != b) & (a != c) & (a != d) & (b != c) & (b != d) & (c != d)
+        });
+    }
+    if indices.len() == 3 * face_sizes.len() && all_sized(3) {
+        let triangles = indices.as_chunks::<3>().0.iter();
+        return triangles.fold(true, |ok, &[a, b, c]| ok & (a != b) & (a != c) & (b != c));
+    }
+    false
 }
 
 /// The edge arrays of a mesh, as [`build_edges`] makes them.
@@ -308,6 +336,7 @@ pub(crate) fn from_cells_and_edges(
         he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
     }
     let mut mesh = HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, ..Default::default() };
+    mesh.cell_size = uniform_cell_size(&mesh.cell_offsets);
 
     let (edge_offsets, edge_half_edges) = counting_sort(&he_edge, num_edges);
     let mut he_next_around_edge = vec![0u32; nh];
@@ -409,5 +438,32 @@ mod tests {
         reversed.reverse();
         let shared = [ten, reversed, vec![0, 1, 2, 3, 4, 5, 6, 7]].concat();
         assert_eq!(error(&shared, &[10, 10, 8]), "");
+    }
+
+    /// All-quad and all-triangle meshes take the whole-array checks first; a fault in any corner
+    /// position must still reach the face-by-face report, naming the first faulty face.
+    #[test]
+    fn uniform_meshes_report_every_fault() {
+        let quads = [0, 1, 2, 3, 4, 5, 6, 7];
+        assert_eq!(error(&quads, &[4, 4]), "");
+        for k in 4..8 {
+            let mut repeated = quads;
+            repeated[k] = quads[4 + (k + 1) % 4];
+            assert!(error(&repeated, &[4, 4]).contains("face 1 uses vertex"), "corner {k}");
+            let mut outside = quads;
+            outside[k] = 12;
+            assert!(error(&outside, &[4, 4]).contains("face 1 (indices["), "corner {k}");
+        }
+        let triangles = [0, 1, 2, 3, 4, 5];
+        assert_eq!(error(&triangles, &[3, 3]), "");
+        for k in 3..6 {
+            let mut repeated = triangles;
+            repeated[k] = triangles[3 + (k + 1) % 3];
+            assert!(error(&repeated, &[3, 3]).contains("face 1 uses vertex"), "corner {k}");
+        }
+        let mut positions = vec![0.0; 3 * 12];
+        positions[7] = f32::NAN;
+        let message = from_faces(&positions, &quads, &[4, 4]).err().map(|e| e.to_string());
+        assert!(message.unwrap_or_default().contains("vertex 2 has coordinate y = NaN"));
     }
 }

@@ -48,6 +48,23 @@ pub struct HalfEdgeMesh {
     /// refined meshes (the children of such a vertex are such vertices; no others appear), so
     /// the plain Catmull-Clark and Loop rules never need to check.
     pub(crate) multi_fan_vertices: bool,
+    /// Corners per cell when every cell has the same number, else 0 (see [`uniform_cell_size`]).
+    pub(crate) cell_size: u32,
+}
+
+/// The corner count shared by every cell, or 0 when sizes differ or there are no cells. With
+/// it, the cell walks of quad and triangle meshes (every level the quad and triangle splits
+/// make) are index arithmetic instead of two dependent loads (`he_cell`, then `cell_offsets`).
+pub(crate) fn uniform_cell_size(cell_offsets: &[u32]) -> u32 {
+    let Some(&end) = cell_offsets.get(1) else {
+        return 0;
+    };
+    let n = end - cell_offsets[0];
+    if cell_offsets.windows(2).all(|w| w[1] - w[0] == n) {
+        n
+    } else {
+        0
+    }
 }
 
 /// Where a mesh stops being a 2-manifold, for schemes that need to say so.
@@ -296,6 +313,11 @@ impl HalfEdgeMesh {
 
     #[inline]
     pub(crate) fn next_in_cell(&self, h: u32) -> u32 {
+        match self.cell_size {
+            4 => return (h & !3) | ((h + 1) & 3),
+            3 => return if h % 3 == 2 { h - 2 } else { h + 1 },
+            _ => {}
+        }
         let c = self.he_cell[h as usize] as usize;
         if h + 1 == self.cell_offsets[c + 1] {
             self.cell_offsets[c]
@@ -306,6 +328,11 @@ impl HalfEdgeMesh {
 
     #[inline]
     pub(crate) fn prev_in_cell(&self, h: u32) -> u32 {
+        match self.cell_size {
+            4 => return (h & !3) | (h.wrapping_sub(1) & 3),
+            3 => return if h.is_multiple_of(3) { h + 2 } else { h - 1 },
+            _ => {}
+        }
         let c = self.he_cell[h as usize] as usize;
         if h == self.cell_offsets[c] {
             self.cell_offsets[c + 1] - 1
@@ -322,5 +349,34 @@ impl HalfEdgeMesh {
     #[inline]
     pub(crate) fn edge_range(&self, e: usize) -> std::ops::Range<usize> {
         self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::HalfEdgeMesh;
+
+    /// The index arithmetic for all-quad and all-triangle meshes gives the same neighbours in the
+    /// cell as the general lookup through `he_cell` and `cell_offsets`, and a mixed mesh keeps
+    /// the general path.
+    #[test]
+    fn uniform_cell_walks_match_the_general_lookup() {
+        let positions = vec![0.0; 3 * 9];
+        let quads = [0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7];
+        let triangles = [0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6];
+        let mixed = [0, 1, 4, 3, 1, 2, 5, 1, 5, 4];
+        for (indices, sizes, size) in [
+            (&quads[..], vec![4; 4], 4),
+            (&triangles[..], vec![3; 6], 3),
+            (&mixed[..], vec![4, 3, 3], 0),
+        ] {
+            let mesh = HalfEdgeMesh::from_faces(&positions, indices, &sizes).expect("valid mesh");
+            assert_eq!(mesh.cell_size, size);
+            let general = HalfEdgeMesh { cell_size: 0, ..mesh.clone() };
+            for h in 0..mesh.num_half_edges() as u32 {
+                assert_eq!(mesh.next_in_cell(h), general.next_in_cell(h), "next of {h}");
+                assert_eq!(mesh.prev_in_cell(h), general.prev_in_cell(h), "prev of {h}");
+            }
+        }
     }
 }

@@ -26,7 +26,7 @@
 //! are then unchanged.
 
 use crate::error::{Error, Result};
-use crate::mesh::{HalfEdgeMesh, NonManifold, PolyMesh};
+use crate::mesh::{uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
 use crate::rules::{vec3, CornerRules};
 
 /// No such child element: no face for this edge, no vertex face for this corner.
@@ -494,6 +494,7 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
         }
     }
     HalfEdgeMesh {
+        cell_size: uniform_cell_size(&cell_offsets),
         positions,
         cell_offsets,
         he_from,

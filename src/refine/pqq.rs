@@ -186,6 +186,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         // The halves of a non-manifold edge are non-manifold; inner edges never are.
         non_manifold_edges: mesh.non_manifold_edges,
         multi_fan_vertices: mesh.multi_fan_vertices,
+        // Every child cell is a quad (none when the parent has no cells).
+        cell_size: if nh > 0 { 4 } else { 0 },
     }
 }
 

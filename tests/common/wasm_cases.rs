@@ -225,6 +225,33 @@ fn scheme_can_be_one_name_or_one_per_level() {
     assert_eq!(f32s(&a, "positions"), f32s(&b, "positions"));
 }
 
+/// `triangles` is the fan (0, k, k + 1) of every face of the result, written out here from
+/// `indices` and `faceSizes`. The bindings copy it into the JS array in pieces of 49,152 indices:
+/// the quad and mixed-face results here span several pieces, and Loop's triangles come whole.
+#[wasm_bindgen_test]
+fn triangles_are_the_fan_of_every_face() {
+    let (p, i) = tetrahedron_arrays();
+    let tetra = js_mesh(&p, &i, None);
+    for (scheme, level, pieces) in
+        [("catmull-clark", 6.0, 3), ("doo-sabin", 6.0, 4), ("loop", 5.0, 1)]
+    {
+        let options = object(&[("scheme", scheme.into()), ("levels", JsValue::from_f64(level))]);
+        let out = ok(subdivide(&tetra, &options));
+        let (indices, sizes) = (u32s(&out, "indices"), u32s(&out, "faceSizes"));
+        let mut fan = Vec::new();
+        let mut start = 0;
+        for &n in &sizes {
+            let face = &indices[start..start + n as usize];
+            for k in 1..face.len() - 1 {
+                fan.extend_from_slice(&[face[0], face[k], face[k + 1]]);
+            }
+            start += n as usize;
+        }
+        assert!(scheme == "loop" || fan.len() > 49_152, "{scheme}: the case spans pieces");
+        assert_eq!(u32s(&out, "triangles"), fan, "{scheme}");
+    }
+}
+
 #[wasm_bindgen_test]
 fn other_schemes_and_per_level_lists() {
     let (p, i) = tetrahedron_arrays();
