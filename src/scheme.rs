@@ -534,7 +534,7 @@ fn quad_split_tagged<R: QuadSplitRules>(
         let positions = pqq::refine_points(&mesh, rules).into_flattened();
         let indices = pqq::child_face_indices(&mesh);
         // Child cell h comes from parent half-edge h's cell.
-        let hole = |f: usize| tags.is_hole(mesh.he_cell[f]);
+        let hole = |f: usize| tags.is_hole(mesh.cell_of(f as u32));
         return (Level::Poly(without_holes(positions, indices, 4, tags.has_holes(), hole)), None);
     }
     let positions = pqq::refine_points(&mesh, rules);

@@ -15,7 +15,6 @@ pub(super) fn from_faces(
 ) -> Result<HalfEdgeMesh> {
     validate(positions, indices, face_sizes)?;
     let num_vertices = positions.len() / 3;
-    let num_half_edges = indices.len();
 
     let mut cell_offsets = Vec::with_capacity(face_sizes.len() + 1);
     cell_offsets.push(0u32);
@@ -24,29 +23,20 @@ pub(super) fn from_faces(
         total += n;
         total
     }));
-    // Each half-edge ends where the next one of its cell starts: the list shifted by one, with
-    // the last corner of every cell wrapping round to its first.
-    let mut he_to = vec![0u32; num_half_edges];
-    let mut he_cell = vec![0u32; num_half_edges];
-    if let Some(last) = num_half_edges.checked_sub(1) {
-        he_to[..last].copy_from_slice(&indices[1..]);
-    }
-    for (c, range) in cell_offsets.windows(2).enumerate() {
-        let (start, end) = (range[0] as usize, range[1] as usize);
-        he_to[end - 1] = indices[start];
-        for slot in &mut he_cell[start..end] {
-            *slot = c as u32;
-        }
-    }
-
+    let cell_size = uniform_cell_size(&cell_offsets);
+    let (he_to, he_cell) = match cell_size {
+        3 => uniform_cells::<3>(indices),
+        4 => uniform_cells::<4>(indices),
+        _ => mixed_cells(indices, &cell_offsets),
+    };
     let mut mesh = HalfEdgeMesh {
         positions: positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
         cell_offsets,
         he_from: indices.to_vec(),
         he_cell,
+        cell_size,
         ..HalfEdgeMesh::default()
     };
-    mesh.cell_size = uniform_cell_size(&mesh.cell_offsets);
     // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
     let (vertex_offsets, vertex_half_edges, out_to) =
         counting_sort_with(indices, num_vertices, &he_to);
@@ -60,6 +50,39 @@ pub(super) fn from_faces(
     mesh.multi_fan_vertices =
         !mesh.non_manifold_edges && (0..mesh.num_vertices() as u32).any(|v| !mesh.is_single_fan(v));
     Ok(mesh)
+}
+
+/// The to-vertex and the cell of every half-edge when every cell has `N` corners: each cell's
+/// corners rotated by one, and the cell index `N` times, both collected in place.
+fn uniform_cells<const N: usize>(indices: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let cells = indices.as_chunks::<N>().0;
+    let to: Vec<[u32; N]> = cells
+        .iter()
+        .map(|corners| {
+            let mut to = *corners;
+            to.rotate_left(1);
+            to
+        })
+        .collect();
+    let cell: Vec<[u32; N]> = (0..cells.len() as u32).map(|c| [c; N]).collect();
+    (to.into_flattened(), cell.into_flattened())
+}
+
+/// [`uniform_cells`] for cells of any sizes. Each half-edge ends where the next one of its cell
+/// starts: the list shifted by one, with the last corner of every cell wrapping round to its
+/// first.
+fn mixed_cells(indices: &[u32], cell_offsets: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let mut he_to = vec![0u32; indices.len()];
+    let mut he_cell = vec![0u32; indices.len()];
+    if let Some(last) = indices.len().checked_sub(1) {
+        he_to[..last].copy_from_slice(&indices[1..]);
+    }
+    for (c, range) in cell_offsets.windows(2).enumerate() {
+        let (start, end) = (range[0] as usize, range[1] as usize);
+        he_to[end - 1] = indices[start];
+        he_cell[start..end].fill(c as u32);
+    }
+    (he_to, he_cell)
 }
 
 fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {

@@ -101,7 +101,7 @@ impl<'a> HalfEdgeRef<'a> {
     }
 
     pub fn cell_index(&self) -> u32 {
-        self.mesh.he_cell[self.index as usize]
+        self.mesh.cell_of(self.index)
     }
 
     pub fn cell(&self) -> CellRef<'a> {

@@ -341,6 +341,16 @@ impl HalfEdgeMesh {
         }
     }
 
+    /// The cell of half-edge `h`.
+    #[inline]
+    pub(crate) fn cell_of(&self, h: u32) -> u32 {
+        match self.cell_size {
+            4 => h >> 2,
+            3 => h / 3,
+            _ => self.he_cell[h as usize],
+        }
+    }
+
     #[inline]
     pub(crate) fn to_vertex(&self, h: u32) -> u32 {
         self.he_from[self.next_in_cell(h) as usize]
@@ -376,6 +386,7 @@ mod tests {
             for h in 0..mesh.num_half_edges() as u32 {
                 assert_eq!(mesh.next_in_cell(h), general.next_in_cell(h), "next of {h}");
                 assert_eq!(mesh.prev_in_cell(h), general.prev_in_cell(h), "prev of {h}");
+                assert_eq!(mesh.cell_of(h), general.cell_of(h), "cell of {h}");
             }
         }
     }

@@ -57,7 +57,7 @@ pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
             [
                 mesh.he_from[h],
                 edge_base + mesh.he_edge[h],
-                v + mesh.he_cell[h],
+                v + mesh.cell_of(h as u32),
                 edge_base + mesh.he_edge[prev as usize],
             ]
         })
@@ -123,7 +123,7 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         edge_offsets[2 * e + 1] = 2 * start + count;
     }
     for (h, pair) in inner_vertices.iter_mut().enumerate() {
-        *pair = [edge_base + mesh.he_edge[h], nv + mesh.he_cell[h]];
+        *pair = [edge_base + mesh.he_edge[h], nv + mesh.cell_of(h as u32)];
         edge_offsets[2 * ne as usize + h] = 2 * nh + 2 * h as u32;
     }
     edge_offsets[(2 * ne + nh) as usize] = 4 * nh;

@@ -341,7 +341,7 @@ fn has_pillow(mesh: &HalfEdgeMesh) -> bool {
 /// The point of `h`'s cell across from `h` after the fan split (see the module notes).
 #[inline]
 fn across(mesh: &HalfEdgeMesh, split: &[u32], first: &[u32], h: u32) -> u32 {
-    let c = mesh.he_cell[h as usize] as usize;
+    let c = mesh.cell_of(h) as usize;
     let slot = first[c];
     let b = split[c];
     if b != NONE && h == mesh.next_in_cell(b) {
@@ -356,7 +356,7 @@ fn child_face_indices(mesh: &HalfEdgeMesh, split: &[u32], first: &[u32]) -> Vec<
     let mut indices = vec![0u32; 3 * mesh.num_half_edges()];
     for (h, out) in indices.chunks_exact_mut(3).enumerate() {
         let h = h as u32;
-        let c = mesh.he_cell[h as usize] as usize;
+        let c = mesh.cell_of(h) as usize;
         let u = mesh.he_from[h as usize];
         let triangle = if split[c] == h {
             let x = mesh.he_from[mesh.prev_in_cell(h) as usize];

@@ -42,8 +42,8 @@ impl QuadSplitRules for CatmullClark {
     fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3 {
         match smooth_edge(mesh, edge) {
             Some([h0, h1]) => {
-                let f0 = vec3(face_points[mesh.he_cell[h0 as usize] as usize]);
-                let f1 = vec3(face_points[mesh.he_cell[h1 as usize] as usize]);
+                let f0 = vec3(face_points[mesh.cell_of(h0) as usize]);
+                let f1 = vec3(face_points[mesh.cell_of(h1) as usize]);
                 edge_midpoint(mesh, edge) * 0.5 + (f0 + f1) * 0.25
             }
             None => edge_midpoint(mesh, edge),
@@ -54,8 +54,7 @@ impl QuadSplitRules for CatmullClark {
     fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
         let v = vec3(mesh.positions[vertex as usize]);
         let mut faces = Vec3::ZERO;
-        let ring =
-            ring(mesh, vertex, |h| faces += vec3(face_points[mesh.he_cell[h as usize] as usize]));
+        let ring = ring(mesh, vertex, |h| faces += vec3(face_points[mesh.cell_of(h) as usize]));
         if ring.faces == 0 {
             return v;
         }
@@ -94,7 +93,7 @@ impl QuadSplitRules for CreasedCatmullClark<'_> {
         let Some([h0, h1]) = sharp_or_smooth(mesh, self.tags, edge) else {
             return edge_midpoint(mesh, edge);
         };
-        let (c0, c1) = (mesh.he_cell[h0 as usize], mesh.he_cell[h1 as usize]);
+        let (c0, c1) = (mesh.cell_of(h0), mesh.cell_of(h1));
         let [a, b] = mesh.edge_vertices[edge as usize];
         let ends = [vec3(mesh.positions[a as usize]), vec3(mesh.positions[b as usize])];
         let faces = vec3(face_points[c0 as usize]) + vec3(face_points[c1 as usize]);

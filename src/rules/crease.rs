@@ -207,7 +207,7 @@ impl LevelTags {
             }
             for (v, _) in excluded.iter().enumerate().filter(|(_, &x)| x) {
                 for &h in mesh.out_half_edges(v as u32) {
-                    holes[mesh.he_cell[h as usize] as usize] = true;
+                    holes[mesh.cell_of(h) as usize] = true;
                 }
             }
         }
@@ -525,7 +525,7 @@ pub(crate) fn creased_vertex_point(
     // (boundary and non-manifold edges are sharp), so its outgoing half-edges reach every edge.
     let smooth_point = || {
         let mut faces = Vec3::ZERO;
-        let ring = fan(mesh, vertex, |h| faces += face_point(mesh.he_cell[h as usize]))?;
+        let ring = fan(mesh, vertex, |h| faces += face_point(mesh.cell_of(h)))?;
         let nb =
             Neighbourhood { v, faces: ring.faces, neighbours: ring.neighbours, face_points: faces };
         Some(smooth(&nb))

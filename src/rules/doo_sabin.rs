@@ -45,7 +45,7 @@ fn weight_table() -> &'static [[f32; TABLE_SIZES]; TABLE_SIZES] {
 impl CornerRules for DooSabin {
     #[inline]
     fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> Vec3 {
-        let c = mesh.he_cell[half_edge as usize] as usize;
+        let c = mesh.cell_of(half_edge) as usize;
         let (start, end) = (mesh.cell_offsets[c] as usize, mesh.cell_offsets[c + 1] as usize);
         let corners = &mesh.he_from[start..end];
         let n = corners.len();

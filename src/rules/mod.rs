@@ -199,7 +199,13 @@ pub(crate) fn boundary_vertex_rule(boundary: Boundary, v: Vec3, ring: &Ring) -> 
 #[inline]
 pub(crate) fn smooth_edge(mesh: &HalfEdgeMesh, edge: u32) -> Option<[u32; 2]> {
     match mesh.edge_half_edges[mesh.edge_range(edge as usize)] {
-        [h0, h1] if mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize] => Some([h0, h1]),
+        // Without non-manifold edges, two half-edges always run opposite ways.
+        [h0, h1]
+            if !mesh.non_manifold_edges
+                || mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize] =>
+        {
+            Some([h0, h1])
+        }
         _ => None,
     }
 }

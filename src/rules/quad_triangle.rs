@@ -111,7 +111,7 @@ impl MixedSplitRules for QuadTriangle {
             ..RefinedRing::default()
         };
         for h in halves {
-            let c = mesh.he_cell[h as usize] as usize;
+            let c = mesh.cell_of(h) as usize;
             let (prev, next) = (mesh.prev_in_cell(h), mesh.next_in_cell(h));
             let before = position(mesh, mesh.he_from[prev as usize]);
             let after = position(mesh, mesh.to_vertex(next));
@@ -138,7 +138,7 @@ impl MixedSplitRules for QuadTriangle {
         let v = position(mesh, vertex);
         let mut r = RefinedRing::default();
         let ring = ring(mesh, vertex, |h| {
-            let c = mesh.he_cell[h as usize] as usize;
+            let c = mesh.cell_of(h) as usize;
             if cell_size(mesh, c) == 3 {
                 r.triangles += 1;
             } else {
