@@ -25,8 +25,8 @@ pub(super) fn from_faces(
     }));
     let cell_size = uniform_cell_size(&cell_offsets);
     let (he_to, he_cell) = match cell_size {
-        3 => uniform_cells::<3>(indices),
-        4 => uniform_cells::<4>(indices),
+        3 => (uniform_to_vertices::<3>(indices), Vec::new()),
+        4 => (uniform_to_vertices::<4>(indices), Vec::new()),
         _ => mixed_cells(indices, &cell_offsets),
     };
     let mut mesh = HalfEdgeMesh {
@@ -52,25 +52,23 @@ pub(super) fn from_faces(
     Ok(mesh)
 }
 
-/// The to-vertex and the cell of every half-edge when every cell has `N` corners: each cell's
-/// corners rotated by one, and the cell index `N` times, both collected in place.
-fn uniform_cells<const N: usize>(indices: &[u32]) -> (Vec<u32>, Vec<u32>) {
-    let cells = indices.as_chunks::<N>().0;
+/// The to-vertex of every half-edge when every cell has `N` corners: each cell's corners rotated
+/// by one, collected in place.
+fn uniform_to_vertices<const N: usize>(indices: &[u32]) -> Vec<u32> {
+    let cells = indices.as_chunks::<N>().0.iter();
     let to: Vec<[u32; N]> = cells
-        .iter()
         .map(|corners| {
             let mut to = *corners;
             to.rotate_left(1);
             to
         })
         .collect();
-    let cell: Vec<[u32; N]> = (0..cells.len() as u32).map(|c| [c; N]).collect();
-    (to.into_flattened(), cell.into_flattened())
+    to.into_flattened()
 }
 
-/// [`uniform_cells`] for cells of any sizes. Each half-edge ends where the next one of its cell
-/// starts: the list shifted by one, with the last corner of every cell wrapping round to its
-/// first.
+/// The to-vertex and the cell of every half-edge, for cells of any sizes. Each half-edge ends
+/// where the next one of its cell starts: the list shifted by one, with the last corner of every
+/// cell wrapping round to its first.
 fn mixed_cells(indices: &[u32], cell_offsets: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let mut he_to = vec![0u32; indices.len()];
     let mut he_cell = vec![0u32; indices.len()];
@@ -354,12 +352,16 @@ pub(crate) fn from_cells_and_edges(
     num_edges: usize,
 ) -> HalfEdgeMesh {
     let nh = he_from.len();
-    let mut he_cell = vec![0u32; nh];
-    for (c, range) in cell_offsets.windows(2).enumerate() {
-        he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
+    let cell_size = uniform_cell_size(&cell_offsets);
+    let mut he_cell = Vec::new();
+    if cell_size == 0 {
+        he_cell = vec![0u32; nh];
+        for (c, range) in cell_offsets.windows(2).enumerate() {
+            he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
+        }
     }
-    let mut mesh = HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, ..Default::default() };
-    mesh.cell_size = uniform_cell_size(&mesh.cell_offsets);
+    let mut mesh =
+        HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, cell_size, ..Default::default() };
 
     let (edge_offsets, edge_half_edges) = counting_sort(&he_edge, num_edges);
     let mut he_next_around_edge = vec![0u32; nh];

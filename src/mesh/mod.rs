@@ -27,6 +27,8 @@ pub struct HalfEdgeMesh {
     pub(crate) cell_offsets: Vec<u32>,
     /// From-vertex of each half-edge; also the flat face index list.
     pub(crate) he_from: Vec<u32>,
+    /// The cell of each half-edge when cells differ in size; empty when `cell_size` is set, as
+    /// [`HalfEdgeMesh::cell_of`] then computes it (one array less to write per level).
     pub(crate) he_cell: Vec<u32>,
     pub(crate) he_edge: Vec<u32>,
     pub(crate) he_next_around_edge: Vec<u32>,
@@ -48,19 +50,21 @@ pub struct HalfEdgeMesh {
     /// refined meshes (the children of such a vertex are such vertices; no others appear), so
     /// the plain Catmull-Clark and Loop rules never need to check.
     pub(crate) multi_fan_vertices: bool,
-    /// Corners per cell when every cell has the same number, else 0 (see [`uniform_cell_size`]).
+    /// 3 or 4 when every cell has that many corners, else 0 (see [`uniform_cell_size`]).
     pub(crate) cell_size: u32,
 }
 
-/// The corner count shared by every cell, or 0 when sizes differ or there are no cells. With
-/// it, the cell walks of quad and triangle meshes (every level the quad and triangle splits
-/// make) are index arithmetic instead of two dependent loads (`he_cell`, then `cell_offsets`).
+/// 3 when every cell is a triangle, 4 when every cell is a quad, else 0 (also for no cells).
+/// With it, the cell walks of such meshes (every level the quad and triangle splits make, and
+/// most input) are index arithmetic instead of two dependent loads (`he_cell`, then
+/// `cell_offsets`), and `he_cell` need not be stored.
 pub(crate) fn uniform_cell_size(cell_offsets: &[u32]) -> u32 {
     let Some(&end) = cell_offsets.get(1) else {
         return 0;
     };
     let n = end - cell_offsets[0];
-    if cell_offsets.windows(2).all(|w| w[1] - w[0] == n) {
+    let uniform = (n == 3 || n == 4) && cell_offsets.windows(2).all(|w| w[1] - w[0] == n);
+    if uniform {
         n
     } else {
         0
@@ -366,23 +370,32 @@ impl HalfEdgeMesh {
 mod tests {
     use super::HalfEdgeMesh;
 
-    /// The index arithmetic for all-quad and all-triangle meshes gives the same neighbours in the
-    /// cell as the general lookup through `he_cell` and `cell_offsets`, and a mixed mesh keeps
-    /// the general path.
+    /// The index arithmetic for all-quad and all-triangle meshes gives the same neighbours and
+    /// cell as the general lookup through `he_cell` and `cell_offsets` (filled in here from the
+    /// cell sizes), and a mixed mesh keeps the general path.
     #[test]
     fn uniform_cell_walks_match_the_general_lookup() {
         let positions = vec![0.0; 3 * 9];
         let quads = [0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7];
         let triangles = [0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6];
         let mixed = [0, 1, 4, 3, 1, 2, 5, 1, 5, 4];
+        let pentagons = [0, 1, 2, 5, 4, 4, 5, 8, 7, 3];
         for (indices, sizes, size) in [
             (&quads[..], vec![4; 4], 4),
             (&triangles[..], vec![3; 6], 3),
             (&mixed[..], vec![4, 3, 3], 0),
+            // Uniform, but neither triangles nor quads: the general path, with `he_cell`.
+            (&pentagons[..], vec![5, 5], 0),
         ] {
             let mesh = HalfEdgeMesh::from_faces(&positions, indices, &sizes).expect("valid mesh");
             assert_eq!(mesh.cell_size, size);
-            let general = HalfEdgeMesh { cell_size: 0, ..mesh.clone() };
+            let he_cell = (0..mesh.num_cells())
+                .flat_map(|c| {
+                    let n = mesh.cell_offsets[c + 1] - mesh.cell_offsets[c];
+                    std::iter::repeat_n(c as u32, n as usize)
+                })
+                .collect();
+            let general = HalfEdgeMesh { cell_size: 0, he_cell, ..mesh.clone() };
             for h in 0..mesh.num_half_edges() as u32 {
                 assert_eq!(mesh.next_in_cell(h), general.next_in_cell(h), "next of {h}");
                 assert_eq!(mesh.prev_in_cell(h), general.prev_in_cell(h), "prev of {h}");

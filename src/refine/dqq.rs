@@ -303,7 +303,9 @@ pub fn child_mesh<R: CornerRules>(
         at
     }));
     let mut he_cell = vec![0u32; he_from.len()];
-    he_cell[..nh].copy_from_slice(&mesh.he_cell);
+    for (h, cell) in he_cell[..nh].iter_mut().enumerate() {
+        *cell = mesh.cell_of(h as u32);
+    }
     for (c, range) in cell_offsets.windows(2).enumerate().skip(nf) {
         he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
     }
@@ -493,12 +495,13 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
             }
         }
     }
+    let cell_size = uniform_cell_size(&cell_offsets);
     HalfEdgeMesh {
-        cell_size: uniform_cell_size(&cell_offsets),
+        cell_size,
         positions,
         cell_offsets,
         he_from,
-        he_cell,
+        he_cell: if cell_size == 0 { he_cell } else { Vec::new() },
         he_edge,
         he_next_around_edge: he_twin,
         edge_vertices,

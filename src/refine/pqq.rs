@@ -86,7 +86,6 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
     };
 
     let he_from = child_face_indices(mesh);
-    let mut he_cell = vec![0u32; 4 * nh as usize];
     let mut he_edge = vec![0u32; 4 * nh as usize];
     let mut he_next_around_edge = vec![0u32; 4 * nh as usize];
     for h in 0..nh {
@@ -94,7 +93,6 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         let a = mesh.he_from[h as usize];
         let p = mesh.prev_in_cell(h);
         let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
-        he_cell[hs.clone()].fill(h);
         he_edge[hs.clone()].copy_from_slice(&[
             half_at(e, a),
             2 * ne + h,
@@ -175,7 +173,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         positions,
         cell_offsets: (0..=nh).map(|c| 4 * c).collect(),
         he_from,
-        he_cell,
+        // Child cell h is 4h..4h + 4: `cell_of` is a shift.
+        he_cell: Vec::new(),
         he_edge,
         he_next_around_edge,
         edge_vertices,
@@ -211,7 +210,7 @@ pub fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -
         *child = decay(s);
     }
     let holes = if tags.has_holes() {
-        mesh.he_cell.iter().map(|&c| tags.holes[c as usize]).collect()
+        (0..nh as u32).map(|h| tags.holes[mesh.cell_of(h) as usize]).collect()
     } else {
         Vec::new()
     };
