@@ -1,7 +1,7 @@
 //! The public vocabulary: schemes, boundary rules, options, and [`subdivide`].
 
 use crate::error::{Error, Result};
-use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::mesh::{chunked, HalfEdgeMesh, PolyMesh};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{pqq, ptq, quad_tri, sqrt3};
 use crate::rules::Sqrt3;
@@ -318,8 +318,100 @@ pub fn subdivide(mesh: &PolyMesh, options: &Options) -> Result<PolyMesh> {
 /// them as OpenSubdiv 3 does, bilinear and midpoint carry them to the next level, and Doo-Sabin,
 /// Quad/Triangle and √3 refuse non-trivial tags. Invalid tags are an [`Error::InvalidTag`].
 pub fn subdivide_with_tags(mesh: &PolyMesh, options: &Options, tags: &Tags) -> Result<PolyMesh> {
+    subdivide_refined(mesh, options, tags).map(Refined::into_poly)
+}
+
+/// [`subdivide_with_tags`], returning the result as a [`Refined`], whose arrays can be copied out
+/// piece by piece.
+pub fn subdivide_refined(mesh: &PolyMesh, options: &Options, tags: &Tags) -> Result<Refined> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    subdivide_mesh_with_tags(base, options, tags)
+    subdivide_mesh_refined(base, options, tags)
+}
+
+/// A subdivision result. After an untagged quad split (Catmull-Clark, bilinear) its face list is
+/// implicit: it keeps the last level's parent mesh, from which the faces follow by index
+/// arithmetic ([`pqq`]), so that a caller can copy indices, face sizes and triangles out in
+/// cache-sized pieces without the arrays ever being stored whole (the wasm bindings do). The
+/// pieces, joined, are the arrays of [`Refined::into_poly`].
+pub struct Refined(Form);
+
+enum Form {
+    Poly(PolyMesh),
+    /// The last level's positions and the mesh it refined.
+    Quads {
+        positions: Vec<f32>,
+        parent: Box<HalfEdgeMesh>,
+    },
+}
+
+impl Refined {
+    pub fn positions(&self) -> &[f32] {
+        match &self.0 {
+            Form::Poly(poly) => &poly.positions,
+            Form::Quads { positions, .. } => positions,
+        }
+    }
+
+    pub fn num_faces(&self) -> usize {
+        match &self.0 {
+            Form::Poly(poly) => poly.num_faces(),
+            Form::Quads { parent, .. } => parent.num_half_edges(),
+        }
+    }
+
+    /// Length of the face index list.
+    pub fn num_indices(&self) -> usize {
+        match &self.0 {
+            Form::Poly(poly) => poly.indices.len(),
+            Form::Quads { parent, .. } => 4 * parent.num_half_edges(),
+        }
+    }
+
+    /// Length of the fan triangulation ([`PolyMesh::triangles`]).
+    pub fn num_triangle_indices(&self) -> usize {
+        match &self.0 {
+            Form::Poly(poly) => poly.num_triangle_indices(),
+            Form::Quads { parent, .. } => 6 * parent.num_half_edges(),
+        }
+    }
+
+    /// The face index list to `faces` and the fan triangulation ([`PolyMesh::triangles`]) to
+    /// `triangles`, each in consecutive pieces (made in one pass where the faces are implicit).
+    pub fn index_and_triangle_chunks(
+        &self,
+        mut faces: impl FnMut(&[u32]),
+        triangles: impl FnMut(&[u32]),
+    ) {
+        match &self.0 {
+            Form::Poly(poly) => {
+                faces(&poly.indices);
+                poly.triangle_chunks(triangles);
+            }
+            Form::Quads { parent, .. } => {
+                pqq::child_face_and_triangle_chunks(parent, faces, triangles)
+            }
+        }
+    }
+
+    /// The face sizes, in consecutive pieces.
+    pub fn face_size_chunks(&self, mut sink: impl FnMut(&[u32])) {
+        match &self.0 {
+            Form::Poly(poly) => sink(&poly.face_sizes),
+            Form::Quads { parent, .. } => chunked(parent.num_half_edges(), |_| [4], sink),
+        }
+    }
+
+    /// The flat arrays.
+    pub fn into_poly(self) -> PolyMesh {
+        match self.0 {
+            Form::Poly(poly) => poly,
+            Form::Quads { positions, parent } => PolyMesh {
+                positions,
+                indices: pqq::child_face_indices(&parent),
+                face_sizes: vec![4; parent.num_half_edges()],
+            },
+        }
+    }
 }
 
 /// Refuses a scheme on a mesh it is not defined on, naming the first offending face.
@@ -379,6 +471,15 @@ pub fn subdivide_mesh_with_tags(
     options: &Options,
     tags: &Tags,
 ) -> Result<PolyMesh> {
+    subdivide_mesh_refined(base, options, tags).map(Refined::into_poly)
+}
+
+/// [`subdivide_mesh_with_tags`], returning a [`Refined`].
+pub fn subdivide_mesh_refined(
+    base: HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined> {
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -394,7 +495,7 @@ pub fn subdivide_mesh_with_tags(
     let mut mesh = base;
     if options.schemes.is_empty() {
         if tags.holes.is_empty() {
-            return Ok(mesh.to_poly());
+            return Ok(Refined(Form::Poly(mesh.to_poly())));
         }
         let level_tags = LevelTags::base_with_edges(&mesh, tags, &crease_edges, false);
         let mut poly = mesh.to_poly();
@@ -409,7 +510,7 @@ pub fn subdivide_mesh_with_tags(
             start += n as usize;
         }
         poly.indices = kept;
-        return Ok(poly);
+        return Ok(Refined(Form::Poly(poly)));
     }
     let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
@@ -496,27 +597,32 @@ pub fn subdivide_mesh_with_tags(
         level_tags = next_tags;
         mesh = match child {
             // A mesh without vertices (Doo-Sabin of a mesh without faces) stays empty.
-            Level::Poly(poly) if last || poly.positions.is_empty() => return Ok(poly),
+            Level::Poly(poly) if last || poly.positions.is_empty() => {
+                return Ok(Refined(Form::Poly(poly)));
+            }
             Level::Poly(poly) => HalfEdgeMesh::from_poly(&poly)?,
             Level::Mesh(mesh) => mesh,
+            Level::Quads { positions, parent } => {
+                return Ok(Refined(Form::Quads { positions, parent: Box::new(parent) }));
+            }
         };
     }
-    Ok(mesh.to_poly())
+    Ok(Refined(Form::Poly(mesh.to_poly())))
 }
 
-/// One level's result: flat arrays (always for the last level), or a mesh built by index
-/// arithmetic where a host can do that.
+/// One level's result: flat arrays, or for the last quad split the positions with the parent
+/// mesh (the faces are implicit, see [`Refined`]), or a mesh built by index arithmetic where a
+/// host can do that.
 enum Level {
     Poly(PolyMesh),
+    Quads { positions: Vec<f32>, parent: HalfEdgeMesh },
     Mesh(HalfEdgeMesh),
 }
 
 fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> Level {
     if last {
         let positions = pqq::refine_points(&mesh, rules).into_flattened();
-        let indices = pqq::child_face_indices(&mesh);
-        let face_sizes = vec![4; mesh.num_half_edges()];
-        return Level::Poly(PolyMesh { positions, indices, face_sizes });
+        return Level::Quads { positions, parent: mesh };
     }
     let positions = pqq::refine_points(&mesh, rules);
     Level::Mesh(pqq::child_mesh(&mesh, positions))

@@ -16,7 +16,7 @@
 use crate::error::Error;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::scheme::{self, Boundary, Options, Scheme};
+use crate::scheme::{self, Boundary, Options, Refined, Scheme};
 use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
@@ -165,8 +165,8 @@ pub fn subdivide(
 ) -> JsResult<JsValue> {
     let (options, tags) = read_options(options).map_err(js_error)?;
     let mesh = read_mesh(mesh).map_err(js_error)?;
-    let refined = scheme::subdivide_with_tags(&mesh, &options, &tags).map_err(js_error)?;
-    mesh_object(&refined, true)
+    let refined = scheme::subdivide_refined(&mesh, &options, &tags).map_err(js_error)?;
+    refined_object(&refined)
 }
 
 /// Parses the text of a Wavefront OBJ file: `v` and `f` lines, and OpenSubdiv's `t` tag lines
@@ -185,7 +185,7 @@ pub fn read_obj(
         ))
     })?;
     let obj = io::read_obj_with_tags(&text).map_err(js_error)?;
-    let object = mesh_object(&obj.mesh, false)?;
+    let object = mesh_object(&obj.mesh)?;
     set_field(&object, "tags", &obj_tags_object(&obj.tags, obj.boundary)?)?;
     Ok(object)
 }
@@ -277,7 +277,7 @@ pub fn shape_names() -> Array {
 pub fn shape(#[wasm_bindgen(unchecked_param_type = "string")] name: &JsValue) -> JsResult<JsValue> {
     let mesh = name.as_string().and_then(|name| crate::shapes::demo_shape(&name));
     match mesh {
-        Some(mesh) => mesh_object(&mesh, false),
+        Some(mesh) => mesh_object(&mesh),
         None => Err(JsError::new(&format!(
             "unknown shape {}; use one of {}",
             describe(name),
@@ -743,30 +743,50 @@ fn is_error(value: &JsValue) -> bool {
 }
 
 /// A plain object of fresh typed arrays (copies, never views of wasm memory).
-fn mesh_object(mesh: &PolyMesh, with_triangles: bool) -> JsResult<JsValue> {
+fn mesh_object(mesh: &PolyMesh) -> JsResult<JsValue> {
     let object = Object::new();
     set_field(&object, "positions", &Float32Array::from(&mesh.positions[..]))?;
     set_field(&object, "indices", &Uint32Array::from(&mesh.indices[..]))?;
     set_field(&object, "faceSizes", &Uint32Array::from(&mesh.face_sizes[..]))?;
-    if with_triangles {
-        set_field(&object, "triangles", &triangles_array(mesh))?;
-    }
     Ok(object.into())
 }
 
-/// The fan triangulation, copied into the JS array piece by piece from a cache-sized buffer, so
-/// that the whole fan is never written to wasm memory and read back.
-fn triangles_array(mesh: &PolyMesh) -> Uint32Array {
-    let total = mesh.num_triangle_indices();
-    let array = Uint32Array::new_with_length(total as u32);
-    let mut at = 0usize;
-    mesh.triangle_chunks(|chunk| {
-        // Never past the end, even for sizes that do not add up (copy_from needs equal lengths).
-        let n = chunk.len().min(total - at);
-        array.subarray(at as u32, (at + n) as u32).copy_from(&chunk[..n]);
-        at += n;
-    });
-    array
+/// `subdivide`'s result. The index arrays are copied into JS piece by piece as the result hands
+/// them over, so that those it keeps implicit (the faces of a last quad split, and every fan
+/// triangulation) are never written whole to wasm memory and read back.
+fn refined_object(refined: &Refined) -> JsResult<JsValue> {
+    let object = Object::new();
+    set_field(&object, "positions", &Float32Array::from(refined.positions()))?;
+    let mut indices = Filler::new(refined.num_indices());
+    let mut triangles = Filler::new(refined.num_triangle_indices());
+    refined.index_and_triangle_chunks(|c| indices.push(c), |c| triangles.push(c));
+    let mut face_sizes = Filler::new(refined.num_faces());
+    refined.face_size_chunks(|c| face_sizes.push(c));
+    set_field(&object, "indices", &indices.array)?;
+    set_field(&object, "faceSizes", &face_sizes.array)?;
+    set_field(&object, "triangles", &triangles.array)?;
+    Ok(object.into())
+}
+
+/// A JS array filled from consecutive pieces.
+struct Filler {
+    array: Uint32Array,
+    len: usize,
+    at: usize,
+}
+
+impl Filler {
+    fn new(len: usize) -> Self {
+        Filler { array: Uint32Array::new_with_length(len as u32), len, at: 0 }
+    }
+
+    fn push(&mut self, chunk: &[u32]) {
+        // Never past the end, even if the pieces were to add up to more (copy_from needs equal
+        // lengths, and a panic would take the module down).
+        let n = chunk.len().min(self.len - self.at);
+        self.array.subarray(self.at as u32, (self.at + n) as u32).copy_from(&chunk[..n]);
+        self.at += n;
+    }
 }
 
 fn set_field(object: &JsValue, key: &str, value: &JsValue) -> JsResult<()> {

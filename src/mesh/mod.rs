@@ -16,6 +16,7 @@ mod poly;
 
 pub use handles::{CellRef, HalfEdgeRef, VertexRef};
 pub use poly::PolyMesh;
+pub(crate) use poly::{chunked, quad_and_fan_chunks};
 
 use crate::error::Result;
 

@@ -1,8 +1,61 @@
 //! The flat polygon mesh that goes in and comes out: the typed-array form of the JS API.
 
-/// The largest piece [`PolyMesh::triangle_chunks`] hands over, in indices: 192 KiB, so that the
-/// buffer stays in cache while it is copied out.
-pub(crate) const TRIANGLE_CHUNK: usize = 6 * 8192;
+/// The largest piece of an index array handed over in pieces ([`PolyMesh::triangle_chunks`],
+/// [`chunked`]): 192 KiB, so that the buffer stays in cache while it is copied out. A multiple
+/// of 3, 4 and 6, so that pieces hold whole triangles, quads and quad fans.
+pub(crate) const CHUNK_LEN: usize = 6 * 8192;
+
+/// Hands `item(0)`, `item(1)`, ..., `item(count - 1)` to `sink`, flattened, in consecutive pieces
+/// of at most [`CHUNK_LEN`] indices written into one reused buffer: for index arrays that are
+/// copied out as they are made and never stored whole.
+pub(crate) fn chunked<const N: usize>(
+    count: usize,
+    item: impl Fn(usize) -> [u32; N],
+    mut sink: impl FnMut(&[u32]),
+) {
+    let mut buffer = vec![[0u32; N]; CHUNK_LEN / N];
+    let mut start = 0;
+    while start < count {
+        let n = buffer.len().min(count - start);
+        for (i, slot) in buffer[..n].iter_mut().enumerate() {
+            *slot = item(start + i);
+        }
+        sink(buffer[..n].as_flattened());
+        start += n;
+    }
+}
+
+/// Hands `quad(0)`, ..., `quad(count - 1)` to `quads` and their fans ([`quad_fan`]) to `fans`, in
+/// matching pieces (at most [`CHUNK_LEN`] indices of fans each): one pass makes both arrays of a
+/// quad mesh's result, each quad made once.
+pub(crate) fn quad_and_fan_chunks(
+    count: usize,
+    quad: impl Fn(usize) -> [u32; 4],
+    mut quads: impl FnMut(&[u32]),
+    mut fans: impl FnMut(&[u32]),
+) {
+    let mut quad_buffer = vec![[0u32; 4]; CHUNK_LEN / 6];
+    let mut fan_buffer = vec![[0u32; 6]; CHUNK_LEN / 6];
+    let mut start = 0;
+    while start < count {
+        let n = quad_buffer.len().min(count - start);
+        for (i, slot) in quad_buffer[..n].iter_mut().enumerate() {
+            *slot = quad(start + i);
+        }
+        for (fan, &q) in fan_buffer[..n].iter_mut().zip(&quad_buffer[..n]) {
+            *fan = quad_fan(q);
+        }
+        quads(quad_buffer[..n].as_flattened());
+        fans(fan_buffer[..n].as_flattened());
+        start += n;
+    }
+}
+
+/// The two triangles of quad `q`'s fan: (0, 1, 2) and (0, 2, 3).
+#[inline]
+pub(crate) fn quad_fan(q: [u32; 4]) -> [u32; 6] {
+    [q[0], q[1], q[2], q[0], q[2], q[3]]
+}
 
 /// A polygon mesh as three flat arrays, the form WebGL and OBJ files use.
 ///
@@ -53,16 +106,11 @@ impl PolyMesh {
             return;
         }
         if uniform(4) {
-            let mut fans = vec![[0u32; 6]; TRIANGLE_CHUNK / 6];
-            for quads in self.indices.as_chunks::<4>().0.chunks(fans.len()) {
-                for (fan, q) in fans.iter_mut().zip(quads) {
-                    *fan = [q[0], q[1], q[2], q[0], q[2], q[3]];
-                }
-                sink(fans[..quads.len()].as_flattened());
-            }
+            let quads = self.indices.as_chunks::<4>().0;
+            chunked(quads.len(), |f| quad_fan(quads[f]), sink);
             return;
         }
-        let mut buffer = Vec::with_capacity(TRIANGLE_CHUNK);
+        let mut buffer = Vec::with_capacity(CHUNK_LEN);
         let mut start = 0usize;
         for &n in &self.face_sizes {
             let n = n as usize;
@@ -70,7 +118,7 @@ impl PolyMesh {
                 break;
             };
             for k in 1..n.saturating_sub(1) {
-                if buffer.len() + 3 > TRIANGLE_CHUNK {
+                if buffer.len() + 3 > CHUNK_LEN {
                     sink(&buffer);
                     buffer.clear();
                 }
@@ -102,7 +150,7 @@ impl PolyMesh {
 
 #[cfg(test)]
 mod tests {
-    use super::{PolyMesh, TRIANGLE_CHUNK};
+    use super::{chunked, PolyMesh, CHUNK_LEN};
 
     fn mesh(indices: &[u32], face_sizes: &[u32]) -> PolyMesh {
         PolyMesh {
@@ -131,8 +179,8 @@ mod tests {
     /// of pentagons whose fans straddle piece boundaries.
     #[test]
     fn triangle_chunks_join_up_to_the_fan() {
-        let quads = 3 * TRIANGLE_CHUNK / 6 + 5;
-        let pentagons = TRIANGLE_CHUNK / 9 + 7;
+        let quads = 3 * CHUNK_LEN / 6 + 5;
+        let pentagons = CHUNK_LEN / 9 + 7;
         let cases = [
             mesh(&(0..4 * quads as u32).map(|i| i % 8).collect::<Vec<_>>(), &vec![4; quads]),
             mesh(
@@ -145,7 +193,7 @@ mod tests {
             let mut joined = Vec::new();
             let mut pieces = 0;
             poly.triangle_chunks(|chunk| {
-                assert!(chunk.len() <= TRIANGLE_CHUNK && chunk.len() % 3 == 0);
+                assert!(chunk.len() <= CHUNK_LEN && chunk.len() % 3 == 0);
                 joined.extend_from_slice(chunk);
                 pieces += 1;
             });
@@ -161,7 +209,28 @@ mod tests {
                 start += n as usize;
             }
             assert_eq!(joined, fan);
-            assert_eq!(pieces, fan.len().div_ceil(TRIANGLE_CHUNK).max(1));
+            assert_eq!(pieces, fan.len().div_ceil(CHUNK_LEN).max(1));
+        }
+    }
+
+    /// `chunked` hands over every item once, in order, in full pieces but the last; none for
+    /// no items.
+    #[test]
+    fn chunked_hands_over_every_item_in_order() {
+        for count in [0, 1, CHUNK_LEN / 4, CHUNK_LEN / 4 + 1, 3 * CHUNK_LEN / 4 + 17] {
+            let mut joined = Vec::new();
+            let mut sizes = Vec::new();
+            chunked(
+                count,
+                |i| [4 * i as u32, 4 * i as u32 + 1, 4 * i as u32 + 2, 4 * i as u32 + 3],
+                |c| {
+                    sizes.push(c.len());
+                    joined.extend_from_slice(c);
+                },
+            );
+            assert_eq!(joined, (0..4 * count as u32).collect::<Vec<_>>(), "{count} items");
+            assert_eq!(sizes.len(), count.div_ceil(CHUNK_LEN / 4), "{count} items");
+            assert!(sizes.iter().rev().skip(1).all(|&n| n == CHUNK_LEN), "{count} items");
         }
     }
 }

@@ -16,7 +16,7 @@
 //! touches its first vertex is child edge `2e`, the other `2e + 1`. Every loop writes only the
 //! entries of its own iteration.
 
-use crate::mesh::HalfEdgeMesh;
+use crate::mesh::{quad_and_fan_chunks, HalfEdgeMesh};
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, QuadSplitRules};
 
@@ -44,25 +44,69 @@ pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[
     points
 }
 
-/// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
-pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
+/// Child cell `h`: the quad (old vertex, edge point, face point, edge point) at the corner where
+/// parent half-edge `h` starts.
+#[inline(always)]
+fn child_quad(mesh: &HalfEdgeMesh, h: u32) -> [u32; 4] {
     let (v, f) = (mesh.num_vertices() as u32, mesh.num_cells() as u32);
     let edge_base = v + f;
+    let prev = mesh.prev_in_cell(h);
+    [
+        mesh.he_from[h as usize],
+        edge_base + mesh.he_edge[h as usize],
+        v + mesh.cell_of(h),
+        edge_base + mesh.he_edge[prev as usize],
+    ]
+}
+
+/// [`child_quad`] for a parent whose cells all have `N` corners: the cell walk is arithmetic
+/// on a constant, decided once per array rather than per quad.
+#[inline(always)]
+fn child_quad_uniform<const N: u32>(mesh: &HalfEdgeMesh, h: u32) -> [u32; 4] {
+    let (v, f) = (mesh.num_vertices() as u32, mesh.num_cells() as u32);
+    let edge_base = v + f;
+    let prev = if h.is_multiple_of(N) { h + N - 1 } else { h - 1 };
+    [
+        mesh.he_from[h as usize],
+        edge_base + mesh.he_edge[h as usize],
+        v + h / N,
+        edge_base + mesh.he_edge[prev as usize],
+    ]
+}
+
+/// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
+pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     // Collected from an exact-size iterator: written in place, neither zeroed first nor
     // grown piece by piece (both cost a pass on wasm).
-    let quads: Vec<[u32; 4]> = (0..mesh.num_half_edges() as u32)
-        .map(|h| {
-            let prev = mesh.prev_in_cell(h);
-            let h = h as usize;
-            [
-                mesh.he_from[h],
-                edge_base + mesh.he_edge[h],
-                v + mesh.cell_of(h as u32),
-                edge_base + mesh.he_edge[prev as usize],
-            ]
-        })
-        .collect();
+    let hs = 0..mesh.num_half_edges() as u32;
+    let quads: Vec<[u32; 4]> = match mesh.cell_size {
+        4 => hs.map(|h| child_quad_uniform::<4>(mesh, h)).collect(),
+        3 => hs.map(|h| child_quad_uniform::<3>(mesh, h)).collect(),
+        _ => hs.map(|h| child_quad(mesh, h)).collect(),
+    };
     quads.into_flattened()
+}
+
+/// [`child_face_indices`] to `faces` and its fan triangulation (two triangles per parent
+/// half-edge, as [`crate::PolyMesh::triangles`] makes them) to `triangles`, in matching pieces
+/// (see [`crate::mesh::quad_and_fan_chunks`]); neither array is ever stored whole.
+pub fn child_face_and_triangle_chunks(
+    mesh: &HalfEdgeMesh,
+    faces: impl FnMut(&[u32]),
+    triangles: impl FnMut(&[u32]),
+) {
+    let nh = mesh.num_half_edges();
+    match mesh.cell_size {
+        4 => {
+            let quad = |h: usize| child_quad_uniform::<4>(mesh, h as u32);
+            quad_and_fan_chunks(nh, quad, faces, triangles)
+        }
+        3 => {
+            let quad = |h: usize| child_quad_uniform::<3>(mesh, h as u32);
+            quad_and_fan_chunks(nh, quad, faces, triangles)
+        }
+        _ => quad_and_fan_chunks(nh, |h| child_quad(mesh, h as u32), faces, triangles),
+    }
 }
 
 /// The complete child mesh, with `positions` from [`refine_points`].

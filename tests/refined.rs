@@ -1,0 +1,75 @@
+//! `subdivide_refined`: the pieces a result hands over (indices, face sizes, the fan
+//! triangulation) join up to the arrays of `into_poly`, whichever form the result takes (the
+//! implicit faces of a last untagged quad split, or flat arrays), across piece boundaries.
+
+use subsurf::scheme::{subdivide_refined, Refined};
+use subsurf::shapes::{cube, grid, prism, torus, torus_triangles};
+use subsurf::{Crease, Options, PolyMesh, Scheme, Tags};
+
+fn joined(len: usize, fill: impl FnOnce(&mut dyn FnMut(&[u32]))) -> Vec<u32> {
+    let mut out = Vec::new();
+    fill(&mut |chunk: &[u32]| out.extend_from_slice(chunk));
+    assert_eq!(out.len(), len, "the pieces add up to the announced length");
+    out
+}
+
+fn check(mesh: &PolyMesh, options: &Options, tags: &Tags, what: &str) {
+    let refined: Refined = subdivide_refined(mesh, options, tags).expect(what);
+    let (mut indices, mut triangles) = (Vec::new(), Vec::new());
+    refined.index_and_triangle_chunks(
+        |c| indices.extend_from_slice(c),
+        |c| triangles.extend_from_slice(c),
+    );
+    assert_eq!(indices.len(), refined.num_indices(), "{what}: index count");
+    assert_eq!(triangles.len(), refined.num_triangle_indices(), "{what}: triangle count");
+    let sizes = joined(refined.num_faces(), |sink| refined.face_size_chunks(sink));
+    let positions = refined.positions().to_vec();
+    let poly = refined.into_poly();
+    assert_eq!(positions, poly.positions, "{what}: positions");
+    assert_eq!(indices, poly.indices, "{what}: indices");
+    assert_eq!(sizes, poly.face_sizes, "{what}: face sizes");
+    // The fan, written out here face by face from the flat arrays.
+    let mut fan = Vec::new();
+    let mut start = 0;
+    for &n in &poly.face_sizes {
+        let face = &poly.indices[start..start + n as usize];
+        for k in 1..face.len() - 1 {
+            fan.extend_from_slice(&[face[0], face[k], face[k + 1]]);
+        }
+        start += n as usize;
+    }
+    assert_eq!(triangles, fan, "{what}: triangles");
+    // The same call through the flat-array API gives the same arrays.
+    assert_eq!(subsurf::subdivide_with_tags(mesh, options, tags).expect(what), poly, "{what}");
+}
+
+#[test]
+fn pieces_join_up_to_the_flat_arrays() {
+    // 40 x 40 quads: 6,400 child quads at level 1 (25,600 indices), 25,600 at level 2: the
+    // implicit quads span one and several pieces of 49,152 indices.
+    let meshes = [
+        ("cube", cube()),
+        ("grid", grid(40, 40)),
+        ("torus", torus(40, 40, 1.0, 0.25)),
+        ("triangle torus", torus_triangles(20, 20, 1.0, 0.25)),
+        ("prism", prism(7)),
+    ];
+    let mut crease = Tags::default();
+    crease.creases.push(Crease { vertices: [0, 1], sharpness: 2.0 });
+    for (name, mesh) in &meshes {
+        let triangles = mesh.face_sizes.iter().all(|&n| n == 3);
+        for &scheme in Scheme::ALL {
+            if scheme.triangles_only() && !triangles {
+                continue;
+            }
+            for levels in 1..=2 {
+                let options = Options::new(scheme, levels);
+                check(mesh, &options, &Tags::default(), &format!("{name} {scheme} {levels}"));
+                if matches!(scheme, Scheme::CatmullClark | Scheme::Loop) {
+                    let what = format!("{name} {scheme} {levels} creased");
+                    check(mesh, &options, &crease, &what);
+                }
+            }
+        }
+    }
+}
