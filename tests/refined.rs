@@ -1,6 +1,7 @@
 //! `subdivide_refined`: the pieces a result hands over (indices, face sizes, the fan
 //! triangulation) join up to the arrays of `into_poly`, whichever form the result takes (the
-//! implicit faces of a last untagged quad split, or flat arrays), across piece boundaries.
+//! implicit faces of a last untagged quad split, or flat arrays), across piece boundaries, and
+//! the fan of the implicit faces is `PolyMesh::triangles` of the flat ones.
 
 use subsurf::scheme::{subdivide_refined, Refined};
 use subsurf::shapes::{cube, grid, prism, torus, torus_triangles};
@@ -28,17 +29,8 @@ fn check(mesh: &PolyMesh, options: &Options, tags: &Tags, what: &str) {
     assert_eq!(positions, poly.positions, "{what}: positions");
     assert_eq!(indices, poly.indices, "{what}: indices");
     assert_eq!(sizes, poly.face_sizes, "{what}: face sizes");
-    // The fan, written out here face by face from the flat arrays.
-    let mut fan = Vec::new();
-    let mut start = 0;
-    for &n in &poly.face_sizes {
-        let face = &poly.indices[start..start + n as usize];
-        for k in 1..face.len() - 1 {
-            fan.extend_from_slice(&[face[0], face[k], face[k + 1]]);
-        }
-        start += n as usize;
-    }
-    assert_eq!(triangles, fan, "{what}: triangles");
+    // The fan of the flat arrays (checked face by face in src/mesh/poly.rs's unit tests).
+    assert_eq!(triangles, poly.triangles(), "{what}: triangles");
     // The same call through the flat-array API gives the same arrays.
     assert_eq!(subsurf::subdivide_with_tags(mesh, options, tags).expect(what), poly, "{what}");
 }

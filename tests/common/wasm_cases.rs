@@ -225,28 +225,29 @@ fn scheme_can_be_one_name_or_one_per_level() {
     assert_eq!(f32s(&a, "positions"), f32s(&b, "positions"));
 }
 
-/// `triangles` is the fan (0, k, k + 1) of every face of the result, written out here from
-/// `indices` and `faceSizes`. The bindings copy it into the JS array in pieces of 49,152 indices:
-/// the quad and mixed-face results here span several pieces, and Loop's triangles come whole.
+/// The bindings copy `indices`, `faceSizes` and `triangles` into JS in pieces of up to 49,152
+/// indices (made on the fly for Catmull-Clark's last level). Joined, they must be the flat arrays
+/// of the Rust API's `subdivide` and `PolyMesh::triangles` (the fan (0, k, k + 1) of every face,
+/// checked face by face in src/mesh/poly.rs). The quad and mixed-face results here span several
+/// pieces; Loop's triangles come whole.
 #[wasm_bindgen_test]
-fn triangles_are_the_fan_of_every_face() {
+fn streamed_arrays_are_the_flat_arrays() {
     let (p, i) = tetrahedron_arrays();
     let tetra = js_mesh(&p, &i, None);
-    for (scheme, level) in [("catmull-clark", 6.0), ("doo-sabin", 6.0), ("loop", 5.0)] {
-        let options = object(&[("scheme", scheme.into()), ("levels", JsValue::from_f64(level))]);
+    let native =
+        subsurf::PolyMesh { positions: p.clone(), indices: i.clone(), face_sizes: vec![3; 4] };
+    for (scheme, level) in [("catmull-clark", 6), ("doo-sabin", 6), ("loop", 5)] {
+        let options =
+            object(&[("scheme", scheme.into()), ("levels", JsValue::from_f64(level as f64))]);
         let out = ok(subdivide(&tetra, &options));
-        let (indices, sizes) = (u32s(&out, "indices"), u32s(&out, "faceSizes"));
-        let mut fan = Vec::new();
-        let mut start = 0;
-        for &n in &sizes {
-            let face = &indices[start..start + n as usize];
-            for k in 1..face.len() - 1 {
-                fan.extend_from_slice(&[face[0], face[k], face[k + 1]]);
-            }
-            start += n as usize;
-        }
-        assert!(scheme == "loop" || fan.len() > 49_152, "{scheme}: the case spans pieces");
-        assert_eq!(u32s(&out, "triangles"), fan, "{scheme}");
+        let scheme_value: subsurf::Scheme = scheme.parse().unwrap();
+        let flat =
+            subsurf::subdivide(&native, &subsurf::Options::new(scheme_value, level)).unwrap();
+        assert_eq!(u32s(&out, "indices"), flat.indices, "{scheme}");
+        assert_eq!(u32s(&out, "faceSizes"), flat.face_sizes, "{scheme}");
+        let triangles = u32s(&out, "triangles");
+        assert!(scheme == "loop" || triangles.len() > 49_152, "{scheme}: the case spans pieces");
+        assert_eq!(triangles, flat.triangles(), "{scheme}");
     }
 }
 
