@@ -56,13 +56,9 @@ pub(super) fn from_faces(
 /// by one, collected in place.
 fn uniform_to_vertices<const N: usize>(indices: &[u32]) -> Vec<u32> {
     let cells = indices.as_chunks::<N>().0.iter();
-    let to: Vec<[u32; N]> = cells
-        .map(|corners| {
-            let mut to = *corners;
-            to.rotate_left(1);
-            to
-        })
-        .collect();
+    // `from_fn` on a constant N unrolls; `rotate_left` would be a call per cell.
+    let to: Vec<[u32; N]> =
+        cells.map(|corners| std::array::from_fn(|k| corners[(k + 1) % N])).collect();
     to.into_flattened()
 }
 
@@ -235,6 +231,7 @@ fn build_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> bool {
 
 /// The outgoing half-edges of `v` with their to-vertices (`out_to` runs parallel to the mesh's
 /// outgoing lists).
+#[inline]
 fn out_with_to<'a>(
     mesh: &'a HalfEdgeMesh,
     out_to: &'a [u32],
