@@ -89,7 +89,7 @@ pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
 
 /// [`child_face_indices`] to `faces` and its fan triangulation (two triangles per parent
 /// half-edge, as [`crate::PolyMesh::triangles`] makes them) to `triangles`, in matching pieces
-/// (see [`crate::mesh::quad_and_fan_chunks`]); neither array is ever stored whole.
+/// (see `mesh::quad_and_fan_chunks`); neither array is ever stored whole.
 pub fn child_face_and_triangle_chunks(
     mesh: &HalfEdgeMesh,
     faces: impl FnMut(&[u32]),

@@ -155,7 +155,7 @@ fn points_and_faces<R: Sqrt3Rules>(
 
 /// One √3 level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
 /// written by index arithmetic: the outgoing half-edges of each child vertex (below) and the
-/// twin of each child half-edge ([`child_twins`]), from which [`dqq::manifold_mesh`] numbers
+/// twin of each child half-edge (`child_twins`), from which `dqq::manifold_mesh` numbers
 /// the edges; no sort or search over the child mesh. Three kinds of parent take the general
 /// path, which is the only error: meshes `check` refuses, meshes with a face that is not a
 /// triangle, and the rare two-triangle "pillow" (an interior vertex of valence 2; only a closed
