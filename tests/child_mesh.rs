@@ -197,21 +197,31 @@ fn doo_sabin_child_mesh_is_the_built_mesh() {
                     break;
                 }
                 let what = format!("{name} {mode:?} level {l}");
-                let built = HalfEdgeMesh::from_poly(&dqq::refine(&level, &DooSabin, mode))
-                    .unwrap_or_else(|e| panic!("{what}: {e}"));
-                let ours = dqq::child_mesh(&level, &DooSabin, mode)
-                    .unwrap_or_else(|e| panic!("{what}: {e}"));
-                assert_same(&what, &ours, &built);
+                let flat = dqq::refine(&level, &DooSabin, mode);
+                let next = compare(&what, flat, dqq::child_mesh(&level, &DooSabin, mode));
                 compared += 1;
-                if ours.num_half_edges() > MAX_HALF_EDGES {
-                    break;
+                match next {
+                    Some(next) => level = next,
+                    None => break,
                 }
-                level = ours;
             }
         }
     }
     println!("Doo-Sabin: {compared} child meshes compared");
     assert!(compared > 200, "only {compared} comparisons ran");
+}
+
+/// Asserts that a host's child mesh (`ours`) is the general builder's mesh of the same level's
+/// flat arrays (`flat`), and returns it as the next level while it stays small enough to refine.
+fn compare(
+    what: &str,
+    flat: PolyMesh,
+    ours: subsurf::Result<HalfEdgeMesh>,
+) -> Option<HalfEdgeMesh> {
+    let built = HalfEdgeMesh::from_poly(&flat).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let ours = ours.unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert_same(what, &ours, &built);
+    (ours.num_half_edges() <= MAX_HALF_EDGES).then_some(ours)
 }
 
 fn sqrt3_levels(name: &str, base: &HalfEdgeMesh, boundary: Boundary, pattern: &[bool]) -> usize {
@@ -225,16 +235,13 @@ fn sqrt3_levels(name: &str, base: &HalfEdgeMesh, boundary: Boundary, pattern: &[
         }
         let what =
             format!("{name} {boundary:?} level {} (refine boundary: {refine_boundary})", l + 1);
-        let built = HalfEdgeMesh::from_poly(&sqrt3::refine(&level, &rules, refine_boundary))
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
-        let ours = sqrt3::child_mesh(&level, &rules, refine_boundary)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
-        assert_same(&what, &ours, &built);
+        let flat = sqrt3::refine(&level, &rules, refine_boundary);
+        let next = compare(&what, flat, sqrt3::child_mesh(&level, &rules, refine_boundary));
         compared += 1;
-        if ours.num_half_edges() > MAX_HALF_EDGES {
-            break;
+        match next {
+            Some(next) => level = next,
+            None => break,
         }
-        level = ours;
     }
     compared
 }

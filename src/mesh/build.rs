@@ -1,7 +1,7 @@
 //! Building a [`HalfEdgeMesh`] from flat arrays: validation first, then connectivity by a counting
 //! sort on the from-vertex and valence-sized scans, with no hash map and no comparison sort.
 
-use super::{uniform_cell_size, HalfEdgeMesh};
+use super::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh};
 use crate::error::{Error, Result};
 
 /// The largest half-edge count a base mesh may have, so that four refinement levels of index
@@ -24,11 +24,12 @@ pub(super) fn from_faces(
         total
     }));
     let cell_size = uniform_cell_size(&cell_offsets);
-    let (he_to, he_cell) = match cell_size {
-        3 => (uniform_to_vertices::<3>(indices), Vec::new()),
-        4 => (uniform_to_vertices::<4>(indices), Vec::new()),
-        _ => mixed_cells(indices, &cell_offsets),
+    let he_to = match cell_size {
+        3 => uniform_to_vertices::<3>(indices),
+        4 => uniform_to_vertices::<4>(indices),
+        _ => mixed_to_vertices(indices, &cell_offsets),
     };
+    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
     let mut mesh = HalfEdgeMesh {
         positions: positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
         cell_offsets,
@@ -62,21 +63,18 @@ fn uniform_to_vertices<const N: usize>(indices: &[u32]) -> Vec<u32> {
     to.into_flattened()
 }
 
-/// The to-vertex and the cell of every half-edge, for cells of any sizes. Each half-edge ends
-/// where the next one of its cell starts: the list shifted by one, with the last corner of every
-/// cell wrapping round to its first.
-fn mixed_cells(indices: &[u32], cell_offsets: &[u32]) -> (Vec<u32>, Vec<u32>) {
+/// The to-vertex of every half-edge, for cells of any sizes. Each half-edge ends where the next
+/// one of its cell starts: the list shifted by one, with the last corner of every cell wrapping
+/// round to its first.
+fn mixed_to_vertices(indices: &[u32], cell_offsets: &[u32]) -> Vec<u32> {
     let mut he_to = vec![0u32; indices.len()];
-    let mut he_cell = vec![0u32; indices.len()];
     if let Some(last) = indices.len().checked_sub(1) {
         he_to[..last].copy_from_slice(&indices[1..]);
     }
-    for (c, range) in cell_offsets.windows(2).enumerate() {
-        let (start, end) = (range[0] as usize, range[1] as usize);
-        he_to[end - 1] = indices[start];
-        he_cell[start..end].fill(c as u32);
+    for range in cell_offsets.windows(2) {
+        he_to[range[1] as usize - 1] = indices[range[0] as usize];
     }
-    (he_to, he_cell)
+    he_to
 }
 
 fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {
@@ -350,13 +348,7 @@ pub(crate) fn from_cells_and_edges(
 ) -> HalfEdgeMesh {
     let nh = he_from.len();
     let cell_size = uniform_cell_size(&cell_offsets);
-    let mut he_cell = Vec::new();
-    if cell_size == 0 {
-        he_cell = vec![0u32; nh];
-        for (c, range) in cell_offsets.windows(2).enumerate() {
-            he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
-        }
-    }
+    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
     let mut mesh =
         HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, cell_size, ..Default::default() };
 

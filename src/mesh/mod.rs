@@ -72,6 +72,19 @@ pub(crate) fn uniform_cell_size(cell_offsets: &[u32]) -> u32 {
     }
 }
 
+/// The `he_cell` a mesh with these cells stores: each half-edge's cell, or nothing when
+/// [`uniform_cell_size`] is not 0 (then [`HalfEdgeMesh::cell_of`] is arithmetic).
+pub(crate) fn stored_half_edge_cells(cell_offsets: &[u32], cell_size: u32) -> Vec<u32> {
+    if cell_size != 0 {
+        return Vec::new();
+    }
+    let mut he_cell = vec![0u32; cell_offsets.last().map_or(0, |&n| n as usize)];
+    for (c, range) in cell_offsets.windows(2).enumerate() {
+        he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
+    }
+    he_cell
+}
+
 /// Where a mesh stops being a 2-manifold, for schemes that need to say so.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NonManifold {
@@ -390,12 +403,7 @@ mod tests {
         ] {
             let mesh = HalfEdgeMesh::from_faces(&positions, indices, &sizes).expect("valid mesh");
             assert_eq!(mesh.cell_size, size);
-            let he_cell = (0..mesh.num_cells())
-                .flat_map(|c| {
-                    let n = mesh.cell_offsets[c + 1] - mesh.cell_offsets[c];
-                    std::iter::repeat_n(c as u32, n as usize)
-                })
-                .collect();
+            let he_cell = super::stored_half_edge_cells(&mesh.cell_offsets, 0);
             let general = HalfEdgeMesh { cell_size: 0, he_cell, ..mesh.clone() };
             for h in 0..mesh.num_half_edges() as u32 {
                 assert_eq!(mesh.next_in_cell(h), general.next_in_cell(h), "next of {h}");

@@ -26,7 +26,7 @@
 //! are then unchanged.
 
 use crate::error::{Error, Result};
-use crate::mesh::{uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
+use crate::mesh::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
 use crate::rules::{vec3, CornerRules};
 
 /// No such child element: no face for this edge, no vertex face for this corner.
@@ -290,7 +290,7 @@ pub fn child_mesh<R: CornerRules>(
     let layout = Layout::new(mesh, boundary);
     let (positions, he_from) = points_and_faces(mesh, rules, &layout);
 
-    let (nh, nf) = (mesh.num_half_edges(), mesh.num_cells());
+    let nh = mesh.num_half_edges();
     let mut cell_offsets = Vec::with_capacity(layout.num_child_cells(mesh) + 1);
     cell_offsets.extend_from_slice(&mesh.cell_offsets);
     let mut at = nh as u32;
@@ -302,14 +302,6 @@ pub fn child_mesh<R: CornerRules>(
         at += n;
         at
     }));
-    let mut he_cell = vec![0u32; he_from.len()];
-    for (h, cell) in he_cell[..nh].iter_mut().enumerate() {
-        *cell = mesh.cell_of(h as u32);
-    }
-    for (c, range) in cell_offsets.windows(2).enumerate().skip(nf) {
-        he_cell[range[0] as usize..range[1] as usize].fill(c as u32);
-    }
-
     let sides = layout.edge_face_sides(mesh);
     let he_twin = dual_twins(mesh, &layout, &sides, he_from.len());
 
@@ -348,7 +340,6 @@ pub fn child_mesh<R: CornerRules>(
         positions,
         cell_offsets,
         he_from,
-        he_cell,
         he_twin,
         vertex_offsets,
         vertex_half_edges,
@@ -416,7 +407,6 @@ pub(crate) struct ManifoldParts {
     pub positions: Vec<[f32; 3]>,
     pub cell_offsets: Vec<u32>,
     pub he_from: Vec<u32>,
-    pub he_cell: Vec<u32>,
     /// The other half-edge of each half-edge's edge; a boundary half-edge's own index.
     pub he_twin: Vec<u32>,
     /// `vertex_offsets[v]..vertex_offsets[v + 1]` index `vertex_half_edges`: the half-edges
@@ -435,7 +425,6 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
         positions,
         cell_offsets,
         he_from,
-        he_cell,
         he_twin,
         vertex_offsets,
         mut vertex_half_edges,
@@ -455,14 +444,22 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
 
     let boundary_count = he_twin.iter().enumerate().filter(|&(h, &t)| t as usize == h).count();
     let num_edges = (nh + boundary_count) / 2;
+    let cell_size = uniform_cell_size(&cell_offsets);
+    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
+    let mut mesh = HalfEdgeMesh {
+        cell_size,
+        positions,
+        cell_offsets,
+        he_from,
+        he_cell,
+        he_next_around_edge: he_twin,
+        vertex_offsets,
+        ..HalfEdgeMesh::default()
+    };
+    let (he_from, he_twin) = (&mesh.he_from, &mesh.he_next_around_edge);
     let to_vertex = |h: usize| {
         let twin = he_twin[h] as usize;
-        if twin != h {
-            return he_from[twin];
-        }
-        let c = he_cell[h] as usize;
-        let last = cell_offsets[c + 1] as usize - 1;
-        he_from[if h == last { cell_offsets[c] as usize } else { h + 1 }]
+        he_from[if twin != h { twin } else { mesh.next_in_cell(h as u32) as usize }]
     };
     let mut he_edge = vec![0u32; nh];
     let mut edge_vertices = Vec::with_capacity(num_edges);
@@ -488,30 +485,19 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
     }
     if boundary_count > 0 {
         // The seed's contract: a vertex lists a boundary half-edge first when it has one.
-        for range in vertex_offsets.windows(2) {
+        for range in mesh.vertex_offsets.windows(2) {
             let list = &mut vertex_half_edges[range[0] as usize..range[1] as usize];
             if let Some(i) = list.iter().position(|&h| he_twin[h as usize] == h) {
                 list.swap(0, i);
             }
         }
     }
-    let cell_size = uniform_cell_size(&cell_offsets);
-    HalfEdgeMesh {
-        cell_size,
-        positions,
-        cell_offsets,
-        he_from,
-        he_cell: if cell_size == 0 { he_cell } else { Vec::new() },
-        he_edge,
-        he_next_around_edge: he_twin,
-        edge_vertices,
-        edge_offsets,
-        edge_half_edges,
-        vertex_offsets,
-        vertex_half_edges,
-        non_manifold_edges: false,
-        multi_fan_vertices: false,
-    }
+    mesh.he_edge = he_edge;
+    mesh.edge_vertices = edge_vertices;
+    mesh.edge_offsets = edge_offsets;
+    mesh.edge_half_edges = edge_half_edges;
+    mesh.vertex_half_edges = vertex_half_edges;
+    mesh
 }
 
 /// Sorts a short list (a vertex's outgoing half-edges).

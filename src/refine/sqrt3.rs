@@ -175,7 +175,6 @@ pub fn child_mesh<R: Sqrt3Rules>(
     let (positions, he_from) = points_and_faces(mesh, rules, refine_boundary, &split);
     let num_child_vertices = positions.len();
     let cell_offsets = (0..=nh as u32).map(|c| 3 * c).collect();
-    let he_cell = (0..3 * nh as u32).map(|h| h / 3).collect();
 
     let twin = |h: u32| mesh.he_next_around_edge[h as usize];
     let mut vertex_offsets = Vec::with_capacity(num_child_vertices + 1);
@@ -235,7 +234,6 @@ pub fn child_mesh<R: Sqrt3Rules>(
         positions,
         cell_offsets,
         he_from,
-        he_cell,
         he_twin,
         vertex_offsets,
         vertex_half_edges: out,
