@@ -101,7 +101,21 @@ pub(crate) struct Ring {
 #[inline]
 pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32, mut per_face: impl FnMut(u32)) -> Ring {
     let mut r = Ring::default();
-    for &h in mesh.out_half_edges(vertex) {
+    let out = mesh.out_half_edges(vertex);
+    // With manifold edges, every open fan at a vertex starts with an outgoing boundary
+    // half-edge, which the mesh lists first: when the first one has a twin, the vertex is
+    // interior, and the boundary loads below (two per face) are not needed.
+    let interior = out.first().is_some_and(|&h| mesh.he_next_around_edge[h as usize] != h);
+    if interior && !mesh.non_manifold_edges {
+        for &h in out {
+            per_face(h);
+            r.neighbours += vec3(mesh.positions[mesh.to_vertex(h) as usize]);
+        }
+        r.faces = out.len() as u32;
+        r.valence = r.faces;
+        return r;
+    }
+    for &h in out {
         per_face(h);
         r.faces += 1;
         let to = vec3(mesh.positions[mesh.to_vertex(h) as usize]);
