@@ -25,28 +25,31 @@ pub(crate) fn chunked<const N: usize>(
     }
 }
 
-/// Hands `quad(0)`, ..., `quad(count - 1)` to `quads` and their fans ([`quad_fan`]) to `fans`, in
-/// matching pieces (at most [`CHUNK_LEN`] indices of fans each): one pass makes both arrays of a
-/// quad mesh's result, each quad made once.
-pub(crate) fn quad_and_fan_chunks(
+/// Hands the quads of `group(0)`, ..., `group(count - 1)` (`K` quads each) to `quads` and their
+/// fans ([`quad_fan`]) to `fans`, in matching pieces (at most [`CHUNK_LEN`] indices of fans
+/// each): one pass makes both arrays of a quad mesh's result, each quad made once. A group is
+/// what one step makes best: the `K` child quads of a parent with `K` corners gather that
+/// parent's corners and edges once, in a loop the compiler can vectorise.
+pub(crate) fn quad_and_fan_chunks<const K: usize>(
     count: usize,
-    quad: impl Fn(usize) -> [u32; 4],
+    group: impl Fn(usize) -> [[u32; 4]; K],
     mut quads: impl FnMut(&[u32]),
     mut fans: impl FnMut(&[u32]),
 ) {
-    let mut quad_buffer = vec![[0u32; 4]; CHUNK_LEN / 6];
-    let mut fan_buffer = vec![[0u32; 6]; CHUNK_LEN / 6];
+    let groups = (CHUNK_LEN / 6 / K).max(1);
+    let mut quad_buffer = vec![[[0u32; 4]; K]; groups];
+    let mut fan_buffer = vec![[[0u32; 6]; K]; groups];
     let mut start = 0;
     while start < count {
-        let n = quad_buffer.len().min(count - start);
+        let n = groups.min(count - start);
         for (i, slot) in quad_buffer[..n].iter_mut().enumerate() {
-            *slot = quad(start + i);
+            *slot = group(start + i);
         }
-        for (fan, &q) in fan_buffer[..n].iter_mut().zip(&quad_buffer[..n]) {
-            *fan = quad_fan(q);
+        for (fan, q) in fan_buffer[..n].iter_mut().zip(&quad_buffer[..n]) {
+            *fan = q.map(quad_fan);
         }
-        quads(quad_buffer[..n].as_flattened());
-        fans(fan_buffer[..n].as_flattened());
+        quads(quad_buffer[..n].as_flattened().as_flattened());
+        fans(fan_buffer[..n].as_flattened().as_flattened());
         start += n;
     }
 }

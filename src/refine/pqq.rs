@@ -59,30 +59,49 @@ fn child_quad(mesh: &HalfEdgeMesh, h: u32) -> [u32; 4] {
     ]
 }
 
-/// [`child_quad`] for a parent whose cells all have `N` corners: the cell walk is arithmetic
-/// on a constant, decided once per array rather than per quad.
+/// The `N` child quads of cell `c` of a parent whose cells all have `N` corners, from the
+/// parent's corner and edge lists cut into cells: [`child_quad`] for each of the cell's
+/// half-edges, with the cell's loads made once and the cell walk a constant rotation.
 #[inline(always)]
-fn child_quad_uniform<const N: u32>(mesh: &HalfEdgeMesh, h: u32) -> [u32; 4] {
-    let (v, f) = (mesh.num_vertices() as u32, mesh.num_cells() as u32);
-    let edge_base = v + f;
-    let prev = if h.is_multiple_of(N) { h + N - 1 } else { h - 1 };
-    [
-        mesh.he_from[h as usize],
-        edge_base + mesh.he_edge[h as usize],
-        v + h / N,
-        edge_base + mesh.he_edge[prev as usize],
-    ]
+fn child_quads_of_cell<const N: usize>(
+    corners: &[[u32; N]],
+    edges: &[[u32; N]],
+    [v, f]: [u32; 2],
+    c: usize,
+) -> [[u32; 4]; N] {
+    let from = corners[c];
+    let edge = edges[c].map(|e| v + f + e);
+    let face = v + c as u32;
+    std::array::from_fn(|k| [from[k], edge[k], face, edge[(k + N - 1) % N]])
+}
+
+/// The parent's corners and edges cut into cells of `N`, with its vertex and cell counts: what
+/// [`child_quads_of_cell`] reads.
+fn uniform_cells<const N: usize>(mesh: &HalfEdgeMesh) -> (&[[u32; N]], &[[u32; N]], [u32; 2]) {
+    let counts = [mesh.num_vertices() as u32, mesh.num_cells() as u32];
+    (mesh.he_from.as_chunks::<N>().0, mesh.he_edge.as_chunks::<N>().0, counts)
 }
 
 /// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     // Collected from an exact-size iterator: written in place, neither zeroed first nor
     // grown piece by piece (both cost a pass on wasm).
-    let hs = 0..mesh.num_half_edges() as u32;
     let quads: Vec<[u32; 4]> = match mesh.cell_size {
-        4 => hs.map(|h| child_quad_uniform::<4>(mesh, h)).collect(),
-        3 => hs.map(|h| child_quad_uniform::<3>(mesh, h)).collect(),
-        _ => hs.map(|h| child_quad(mesh, h)).collect(),
+        4 => {
+            let (corners, edges, counts) = uniform_cells::<4>(mesh);
+            let cells = 0..corners.len();
+            let quads: Vec<_> =
+                cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
+            quads.into_flattened()
+        }
+        3 => {
+            let (corners, edges, counts) = uniform_cells::<3>(mesh);
+            let cells = 0..corners.len();
+            let quads: Vec<_> =
+                cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
+            quads.into_flattened()
+        }
+        _ => (0..mesh.num_half_edges() as u32).map(|h| child_quad(mesh, h)).collect(),
     };
     quads.into_flattened()
 }
@@ -95,17 +114,21 @@ pub fn child_face_and_triangle_chunks(
     faces: impl FnMut(&[u32]),
     triangles: impl FnMut(&[u32]),
 ) {
-    let nh = mesh.num_half_edges();
     match mesh.cell_size {
         4 => {
-            let quad = |h: usize| child_quad_uniform::<4>(mesh, h as u32);
-            quad_and_fan_chunks(nh, quad, faces, triangles)
+            let (corners, edges, counts) = uniform_cells::<4>(mesh);
+            let cell = |c| child_quads_of_cell(corners, edges, counts, c);
+            quad_and_fan_chunks(corners.len(), cell, faces, triangles)
         }
         3 => {
-            let quad = |h: usize| child_quad_uniform::<3>(mesh, h as u32);
-            quad_and_fan_chunks(nh, quad, faces, triangles)
+            let (corners, edges, counts) = uniform_cells::<3>(mesh);
+            let cell = |c| child_quads_of_cell(corners, edges, counts, c);
+            quad_and_fan_chunks(corners.len(), cell, faces, triangles)
         }
-        _ => quad_and_fan_chunks(nh, |h| child_quad(mesh, h as u32), faces, triangles),
+        _ => {
+            let quad = |h: usize| [child_quad(mesh, h as u32)];
+            quad_and_fan_chunks(mesh.num_half_edges(), quad, faces, triangles)
+        }
     }
 }
 
