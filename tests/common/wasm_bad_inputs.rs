@@ -355,6 +355,11 @@ fn hostile_js_values_give_errors_not_exceptions() {
         ("views into a larger buffer", format!("const m = {{ {cube_fields} }}; const b = new ArrayBuffer(1024); const p = new Float32Array(b, 64, 24); p.set(m.positions); m.positions = p; return m;")),
         ("a frozen mesh object", format!("return Object.freeze({{ {cube_fields} }});")),
         (
+            // The copy reads the array's own length slot, not a property that shadows it.
+            "positions and indices whose length properties lie",
+            format!("const m = {{ {cube_fields} }}; for (const a of [m.positions, m.indices]) Object.defineProperty(a, 'length', {{ get() {{ return 3; }} }}); return m;"),
+        ),
+        (
             "a mesh with a null prototype",
             format!("return Object.assign(Object.create(null), {{ {cube_fields} }});"),
         ),
