@@ -393,6 +393,15 @@ impl Refined {
         }
     }
 
+    /// The size of every face, when all faces are known to have one size without a scan (the
+    /// implicit quads of a quad split), so that a caller can fill the array instead of copying it.
+    pub fn uniform_face_size(&self) -> Option<u32> {
+        match &self.0 {
+            Form::Poly(_) => None,
+            Form::Quads { .. } => Some(4),
+        }
+    }
+
     /// The face sizes, in consecutive pieces.
     pub fn face_size_chunks(&self, mut sink: impl FnMut(&[u32])) {
         match &self.0 {

@@ -784,10 +784,19 @@ fn refined_object(refined: &Refined) -> JsResult<JsValue> {
     let mut indices = Filler::new(refined.num_indices());
     let mut triangles = Filler::new(refined.num_triangle_indices());
     refined.index_and_triangle_chunks(|c| indices.push(c), |c| triangles.push(c));
-    let mut face_sizes = Filler::new(refined.num_faces());
-    refined.face_size_chunks(|c| face_sizes.push(c));
+    let face_sizes = match refined.uniform_face_size() {
+        Some(n) => {
+            let len = refined.num_faces() as u32;
+            Uint32Array::new_with_length(len).fill(n, 0, len)
+        }
+        None => {
+            let mut face_sizes = Filler::new(refined.num_faces());
+            refined.face_size_chunks(|c| face_sizes.push(c));
+            face_sizes.array
+        }
+    };
     set_field(&object, "indices", &indices.array)?;
-    set_field(&object, "faceSizes", &face_sizes.array)?;
+    set_field(&object, "faceSizes", &face_sizes)?;
     set_field(&object, "triangles", &triangles.array)?;
     Ok(object.into())
 }

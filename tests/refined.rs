@@ -24,6 +24,9 @@ fn check(mesh: &PolyMesh, options: &Options, tags: &Tags, what: &str) {
     assert_eq!(indices.len(), refined.num_indices(), "{what}: index count");
     assert_eq!(triangles.len(), refined.num_triangle_indices(), "{what}: triangle count");
     let sizes = joined(refined.num_faces(), |sink| refined.face_size_chunks(sink));
+    if let Some(n) = refined.uniform_face_size() {
+        assert!(sizes.iter().all(|&s| s == n), "{what}: every face has {n} corners");
+    }
     let positions = refined.positions().to_vec();
     let poly = refined.into_poly();
     assert_eq!(positions, poly.positions, "{what}: positions");
