@@ -82,25 +82,21 @@ fn uniform_cells<const N: usize>(mesh: &HalfEdgeMesh) -> (&[[u32; N]], &[[u32; N
     (mesh.he_from.as_chunks::<N>().0, mesh.he_edge.as_chunks::<N>().0, counts)
 }
 
+/// Every child quad of a parent whose cells all have `N` corners, cell by cell.
+fn uniform_child_quads<const N: usize>(mesh: &HalfEdgeMesh) -> Vec<[u32; 4]> {
+    let (corners, edges, counts) = uniform_cells::<N>(mesh);
+    let cells = 0..corners.len();
+    let quads: Vec<_> = cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
+    quads.into_flattened()
+}
+
 /// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     // Collected from an exact-size iterator: written in place, neither zeroed first nor
     // grown piece by piece (both cost a pass on wasm).
     let quads: Vec<[u32; 4]> = match mesh.cell_size {
-        4 => {
-            let (corners, edges, counts) = uniform_cells::<4>(mesh);
-            let cells = 0..corners.len();
-            let quads: Vec<_> =
-                cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
-            quads.into_flattened()
-        }
-        3 => {
-            let (corners, edges, counts) = uniform_cells::<3>(mesh);
-            let cells = 0..corners.len();
-            let quads: Vec<_> =
-                cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
-            quads.into_flattened()
-        }
+        4 => uniform_child_quads::<4>(mesh),
+        3 => uniform_child_quads::<3>(mesh),
         _ => (0..mesh.num_half_edges() as u32).map(|h| child_quad(mesh, h)).collect(),
     };
     quads.into_flattened()
