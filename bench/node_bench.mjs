@@ -9,37 +9,13 @@
 import { dirname, join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { quadTorus, triangleTorus } from './torus.mjs';
+
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
 const { subdivide } = await import(pathToFileURL(join(root, 'pkg', 'node.js')).href);
 
-// The torus layout of src/shapes.rs: vertex i*segments + j, face (i,j),(i+1,j),(i+1,j+1),(i,j+1).
-function torus(rings, segments, major, minor, triangles) {
-  const positions = new Float32Array(3 * rings * segments);
-  for (let i = 0; i < rings; i++) {
-    const theta = (2 * Math.PI * i) / rings;
-    for (let j = 0; j < segments; j++) {
-      const phi = (2 * Math.PI * j) / segments;
-      const r = major + minor * Math.cos(phi);
-      positions.set([r * Math.cos(theta), r * Math.sin(theta), minor * Math.sin(phi)], 3 * (i * segments + j));
-    }
-  }
-  const v = (i, j) => (i % rings) * segments + (j % segments);
-  const quads = rings * segments;
-  const indices = new Uint32Array(triangles ? 6 * quads : 4 * quads);
-  let k = 0;
-  for (let i = 0; i < rings; i++) {
-    for (let j = 0; j < segments; j++) {
-      const [a, b, c, d] = [v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)];
-      if (triangles) indices.set([a, b, c, a, c, d], k), (k += 6);
-      else indices.set([a, b, c, d], k), (k += 4);
-    }
-  }
-  const faceSizes = triangles ? undefined : new Uint32Array(quads).fill(4);
-  return { positions, indices, faceSizes };
-}
-
-const quads = torus(1000, 1000, 1.0, 0.25, false);
-const tris = torus(250, 200, 1.0, 0.25, true);
+const quads = quadTorus();
+const tris = triangleTorus();
 const cases = [['torus 1M quads', quads, 1], ['torus 100k tris', tris, 1], ['torus 100k tris', tris, 2], ['torus 100k tris', tris, 3]];
 const all = ['catmull-clark', 'loop', 'doo-sabin', 'quad-triangle', 'sqrt3', 'bilinear', 'midpoint'];
 const schemes = process.argv.length > 2 ? process.argv.slice(2) : all;
