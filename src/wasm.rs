@@ -164,8 +164,8 @@ pub fn subdivide(
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
 ) -> JsResult<JsValue> {
     let (options, tags) = read_options(options).map_err(js_error)?;
-    let mesh = read_mesh(mesh).map_err(js_error)?;
-    let refined = scheme::subdivide_refined(&mesh, &options, &tags).map_err(js_error)?;
+    let base = read_half_edge_mesh(mesh).map_err(js_error)?;
+    let refined = scheme::subdivide_mesh_refined(base, &options, &tags).map_err(js_error)?;
     refined_object(&refined)
 }
 
@@ -603,6 +603,23 @@ fn mesh_error(message: String) -> Error {
 
 /// Copies the caller's typed arrays into a [`PolyMesh`].
 fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
+    let (positions, indices, face_sizes) = read_mesh_arrays(value, |p| copy_f32(p, "positions"))?;
+    Ok(PolyMesh { positions, indices, face_sizes })
+}
+
+/// Copies the caller's typed arrays into the arrays a [`HalfEdgeMesh`] keeps, and builds it:
+/// one copy of each, where [`read_mesh`] and `from_poly` would make two.
+fn read_half_edge_mesh(value: &JsValue) -> Result<HalfEdgeMesh, Error> {
+    let (positions, indices, face_sizes) = read_mesh_arrays(value, copy_vertices)?;
+    HalfEdgeMesh::from_vertices(positions, indices, &face_sizes)
+}
+
+/// The three arrays of the caller's mesh object, checked and copied in this order (so that the
+/// first fault is the one reported), the positions by `positions`.
+fn read_mesh_arrays<P>(
+    value: &JsValue,
+    positions: impl FnOnce(&JsValue) -> Result<P, Error>,
+) -> Result<(P, Vec<u32>, Vec<u32>), Error> {
     if !value.is_object() || is_array(value) {
         return Err(mesh_error(format!(
             "mesh must be an object {{ positions: Float32Array, indices: Uint32Array, \
@@ -613,10 +630,10 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
     check_keys(value, &MESH_KEYS, &IGNORED_MESH_KEYS, "mesh field", "mesh fields")
         .map_err(mesh_error)?;
 
-    let positions = get(value, "positions")?;
-    let positions = match typed_array_kind(&positions).as_deref() {
-        Some("Float32Array") => copy_f32(&positions, "positions")?,
-        _ => return Err(wrong_array_type("positions", "Float32Array", &positions)),
+    let positions_value = get(value, "positions")?;
+    let positions = match typed_array_kind(&positions_value).as_deref() {
+        Some("Float32Array") => positions(&positions_value)?,
+        _ => return Err(wrong_array_type("positions", "Float32Array", &positions_value)),
     };
     let indices = get(value, "indices")?;
     let indices = match typed_array_kind(&indices).as_deref() {
@@ -639,7 +656,7 @@ fn read_mesh(value: &JsValue) -> Result<PolyMesh, Error> {
             _ => return Err(wrong_array_type("faceSizes", "Uint32Array", &face_sizes)),
         }
     };
-    Ok(PolyMesh { positions, indices, face_sizes })
+    Ok((positions, indices, face_sizes))
 }
 
 /// The kind of typed array `value` is ("Float32Array", "Uint32Array", ...), or `None`. Decided
@@ -666,52 +683,74 @@ fn typed_array_intrinsic(key: &str, getter: bool) -> Result<js_sys::Function, Js
     value.dyn_into()
 }
 
-/// Copies the caller's typed array straight into wasm memory, read only through its internal
-/// slots: the element count from the `%TypedArray%.prototype.length` getter itself (a `length`
-/// the caller shadowed never runs), the data by `%TypedArray%.prototype.set` on a view of our
-/// own. No code of the caller's runs between sizing and copying, so the length cannot change in
-/// between; a detached source is an error; and no intermediate JS copy is made (a fresh one cost
-/// 20 ms of page faults for a 1M-quad mesh).
+/// The element count of a typed array, from the `%TypedArray%.prototype.length` getter itself:
+/// a `length` the caller shadowed never runs.
+fn typed_array_length(source: &JsValue, field: &str) -> Result<u32, Error> {
+    let length = typed_array_intrinsic("length", true)
+        .and_then(|getter| getter.call0(source))
+        .map_err(|e| copy_threw(field, e))?;
+    Ok(length.as_f64().unwrap_or_default() as u32)
+}
+
+fn copy_threw(field: &str, e: JsValue) -> Error {
+    mesh_error(format!("copying mesh.{field} threw {}", describe(&e)))
+}
+
+/// Copies the caller's typed array of `length` elements (from [`typed_array_length`]) straight
+/// into wasm memory, `per_item` elements to an item of the result, by
+/// `%TypedArray%.prototype.set` on a view of our own, which reads the source through its
+/// internal slots. No code of the caller's runs between sizing and copying, so the length cannot
+/// change in between; a detached source is an error; and no intermediate JS copy is made (a
+/// fresh one cost 20 ms of page faults for a 1M-quad mesh).
 fn copy_in<T: Default + Clone>(
     source: &JsValue,
     field: &str,
+    (length, per_item): (u32, u32),
     view: impl Fn(&JsValue, u32, u32) -> JsValue,
 ) -> Result<Vec<T>, Error> {
-    let threw = |e: JsValue| mesh_error(format!("copying mesh.{field} threw {}", describe(&e)));
-    let length = typed_array_intrinsic("length", true)
-        .and_then(|getter| getter.call0(source))
-        .map_err(threw)?;
-    let mut out = zeroed(length.as_f64().unwrap_or_default() as u32, field)?;
+    let mut out = zeroed(length / per_item, length, field)?;
     // The view is made after the allocation, which may grow (and so detach) the memory's
     // buffer. JS writes `out` through it as `copy_to` would; nothing else holds `out`.
     let buffer = wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer();
-    let target = view(&buffer, out.as_mut_ptr() as u32, out.len() as u32);
+    let target = view(&buffer, out.as_mut_ptr() as u32, length);
     typed_array_intrinsic("set", false)
         .and_then(|set| Reflect::apply(&set, &target, &Array::of1(source)))
-        .map_err(threw)?;
+        .map_err(|e| copy_threw(field, e))?;
     Ok(out)
 }
 
+fn float32_view(buffer: &JsValue, offset: u32, len: u32) -> JsValue {
+    Float32Array::new_with_byte_offset_and_length(buffer, offset, len).into()
+}
+
 fn copy_f32(source: &JsValue, field: &str) -> Result<Vec<f32>, Error> {
-    copy_in(source, field, |buffer, offset, len| {
-        Float32Array::new_with_byte_offset_and_length(buffer, offset, len).into()
-    })
+    copy_in(source, field, (typed_array_length(source, field)?, 1), float32_view)
+}
+
+/// The positions as `[x, y, z]` per vertex, in one copy.
+fn copy_vertices(source: &JsValue) -> Result<Vec<[f32; 3]>, Error> {
+    let length = typed_array_length(source, "positions")?;
+    if !length.is_multiple_of(3) {
+        return Err(crate::mesh::positions_not_in_threes(length as usize));
+    }
+    copy_in(source, "positions", (length, 3), float32_view)
 }
 
 fn copy_u32(source: &JsValue, field: &str) -> Result<Vec<u32>, Error> {
-    copy_in(source, field, |buffer, offset, len| {
+    copy_in(source, field, (typed_array_length(source, field)?, 1), |buffer, offset, len| {
         Uint32Array::new_with_byte_offset_and_length(buffer, offset, len).into()
     })
 }
 
-fn zeroed<T: Default + Clone>(len: u32, field: &str) -> Result<Vec<T>, Error> {
+/// `items` default values; `entries` is the length of the caller's array they stand for.
+fn zeroed<T: Default + Clone>(items: u32, entries: u32, field: &str) -> Result<Vec<T>, Error> {
     let mut out = Vec::new();
-    out.try_reserve_exact(len as usize).map_err(|_| {
+    out.try_reserve_exact(items as usize).map_err(|_| {
         Error::TooLarge(format!(
-            "mesh.{field} has {len} entries, more than the WebAssembly memory can hold"
+            "mesh.{field} has {entries} entries, more than the WebAssembly memory can hold"
         ))
     })?;
-    out.resize(len as usize, T::default());
+    out.resize(items as usize, T::default());
     Ok(out)
 }
 

@@ -145,3 +145,28 @@ fn validation_names_the_fault() {
     );
     assert!(error_of(&tri, &[0, 1, 1], &[3]).contains("face 0 uses vertex 1 twice"));
 }
+
+/// `from_vertices` keeps the arrays it is given and builds the same mesh as `from_faces`, with
+/// the same validation.
+#[test]
+fn from_vertices_is_from_faces_without_the_copies() {
+    for poly in [cube(), grid(4, 3), subsurf::shapes::prism(6)] {
+        let vertices: Vec<[f32; 3]> =
+            poly.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+        let kept = HalfEdgeMesh::from_vertices(vertices, poly.indices.clone(), &poly.face_sizes);
+        assert_eq!(kept.unwrap(), HalfEdgeMesh::from_poly(&poly).unwrap());
+    }
+    let tri = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
+    for (indices, sizes, expected) in [
+        (vec![0, 1, 3], vec![3], "refers to vertex 3"),
+        (vec![0, 1, 1], vec![3], "uses vertex 1 twice"),
+        (vec![0, 1, 2], vec![4], "sum to 4"),
+    ] {
+        let message = match HalfEdgeMesh::from_vertices(tri.clone(), indices.clone(), &sizes) {
+            Err(e) => e.to_string(),
+            Ok(_) => String::new(),
+        };
+        assert!(message.contains(expected), "{message}");
+        assert!(error_of(tri.as_flattened(), &indices, &sizes).contains(expected));
+    }
+}

@@ -14,7 +14,23 @@ pub(super) fn from_faces(
     face_sizes: &[u32],
 ) -> Result<HalfEdgeMesh> {
     validate(positions, indices, face_sizes)?;
-    let num_vertices = positions.len() / 3;
+    let positions = positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+    Ok(connect(positions, indices.to_vec(), face_sizes))
+}
+
+/// [`from_faces`] taking the arrays it keeps: no copy of the positions or the index list.
+pub(super) fn from_vertices(
+    positions: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    face_sizes: &[u32],
+) -> Result<HalfEdgeMesh> {
+    validate(positions.as_flattened(), &indices, face_sizes)?;
+    Ok(connect(positions, indices, face_sizes))
+}
+
+/// The connectivity of valid cells.
+fn connect(positions: Vec<[f32; 3]>, indices: Vec<u32>, face_sizes: &[u32]) -> HalfEdgeMesh {
+    let num_vertices = positions.len();
 
     let mut cell_offsets = Vec::with_capacity(face_sizes.len() + 1);
     cell_offsets.push(0u32);
@@ -25,22 +41,22 @@ pub(super) fn from_faces(
     }));
     let cell_size = uniform_cell_size(&cell_offsets);
     let he_to = match cell_size {
-        3 => uniform_to_vertices::<3>(indices),
-        4 => uniform_to_vertices::<4>(indices),
-        _ => mixed_to_vertices(indices, &cell_offsets),
+        3 => uniform_to_vertices::<3>(&indices),
+        4 => uniform_to_vertices::<4>(&indices),
+        _ => mixed_to_vertices(&indices, &cell_offsets),
     };
+    // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
+    let (vertex_offsets, vertex_half_edges, out_to) =
+        counting_sort_with(&indices, num_vertices, &he_to);
     let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
     let mut mesh = HalfEdgeMesh {
-        positions: positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+        positions,
         cell_offsets,
-        he_from: indices.to_vec(),
+        he_from: indices,
         he_cell,
         cell_size,
         ..HalfEdgeMesh::default()
     };
-    // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
-    let (vertex_offsets, vertex_half_edges, out_to) =
-        counting_sort_with(indices, num_vertices, &he_to);
     mesh.vertex_offsets = vertex_offsets;
     mesh.vertex_half_edges = vertex_half_edges;
     let has_boundary = build_edges(&mut mesh, &he_to, &out_to);
@@ -50,7 +66,7 @@ pub(super) fn from_faces(
     }
     mesh.multi_fan_vertices =
         !mesh.non_manifold_edges && (0..mesh.num_vertices() as u32).any(|v| !mesh.is_single_fan(v));
-    Ok(mesh)
+    mesh
 }
 
 /// The to-vertex of every half-edge when every cell has `N` corners: each cell's corners rotated
@@ -79,10 +95,7 @@ fn mixed_to_vertices(indices: &[u32], cell_offsets: &[u32]) -> Vec<u32> {
 
 fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {
     if !positions.len().is_multiple_of(3) {
-        return Err(Error::mesh(format!(
-            "positions has {} numbers, which is not a multiple of 3; give x, y, z for every vertex",
-            positions.len()
-        )));
+        return Err(positions_not_in_threes(positions.len()));
     }
     if positions.is_empty() {
         return Err(Error::mesh("positions is empty; a mesh needs at least one vertex"));
@@ -162,6 +175,13 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
         start += n;
     }
     Ok(())
+}
+
+/// The error for a position array whose length is not a multiple of 3.
+pub(crate) fn positions_not_in_threes(len: usize) -> Error {
+    Error::mesh(format!(
+        "positions has {len} numbers, which is not a multiple of 3; give x, y, z for every vertex"
+    ))
 }
 
 /// True for an all-triangle or all-quad mesh whose faces never repeat a vertex; false for

@@ -11,6 +11,8 @@
 //! [`CellRef`]. Entry points that take an index return `Option`, so a bad index is never a panic.
 
 mod build;
+#[cfg(target_arch = "wasm32")]
+pub(crate) use build::positions_not_in_threes;
 mod handles;
 mod poly;
 
@@ -98,6 +100,16 @@ impl HalfEdgeMesh {
     /// Builds a mesh from flat arrays, validating all of them. See [`PolyMesh`] for the layout.
     pub fn from_faces(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<Self> {
         build::from_faces(positions, indices, face_sizes)
+    }
+
+    /// [`HalfEdgeMesh::from_faces`] on arrays it keeps (positions as `[x, y, z]` per vertex):
+    /// neither is copied, which saves a pass and the memory of a second copy on large meshes.
+    pub fn from_vertices(
+        positions: Vec<[f32; 3]>,
+        indices: Vec<u32>,
+        face_sizes: &[u32],
+    ) -> Result<Self> {
+        build::from_vertices(positions, indices, face_sizes)
     }
 
     /// Builds a mesh from cells whose edges are already numbered (see
