@@ -149,26 +149,27 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
     };
 
     let he_from = child_face_indices(mesh);
-    let mut he_edge = vec![0u32; 4 * nh as usize];
-    let mut he_next_around_edge = vec![0u32; 4 * nh as usize];
-    for h in 0..nh {
-        let hs = 4 * h as usize..4 * h as usize + 4;
-        let a = mesh.he_from[h as usize];
-        let p = mesh.prev_in_cell(h);
-        let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
-        he_edge[hs.clone()].copy_from_slice(&[
-            half_at(e, a),
-            2 * ne + h,
-            2 * ne + p,
-            half_at(d, a),
-        ]);
-        he_next_around_edge[hs].copy_from_slice(&[
-            child_at(mesh.he_next_around_edge[h as usize], a),
-            4 * mesh.next_in_cell(h) + 2,
-            4 * p + 1,
-            child_at(mesh.he_next_around_edge[p as usize], a),
-        ]);
-    }
+    // Four entries per parent half-edge, collected in place rather than written into zeroed
+    // arrays: no clearing pass over the two largest arrays.
+    let corner = |h: u32| (mesh.he_from[h as usize], mesh.prev_in_cell(h));
+    let he_edge: Vec<[u32; 4]> = (0..nh)
+        .map(|h| {
+            let (a, p) = corner(h);
+            let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
+            [half_at(e, a), 2 * ne + h, 2 * ne + p, half_at(d, a)]
+        })
+        .collect();
+    let he_next_around_edge: Vec<[u32; 4]> = (0..nh)
+        .map(|h| {
+            let (a, p) = corner(h);
+            [
+                child_at(mesh.he_next_around_edge[h as usize], a),
+                4 * mesh.next_in_cell(h) + 2,
+                4 * p + 1,
+                child_at(mesh.he_next_around_edge[p as usize], a),
+            ]
+        })
+        .collect();
 
     let mut edge_vertices = vec![[0u32; 2]; (2 * ne + nh) as usize];
     let mut edge_offsets = vec![0u32; (2 * ne + nh + 1) as usize];
@@ -238,8 +239,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         he_from,
         // Child cell h is 4h..4h + 4: `cell_of` is a shift.
         he_cell: Vec::new(),
-        he_edge,
-        he_next_around_edge,
+        he_edge: he_edge.into_flattened(),
+        he_next_around_edge: he_next_around_edge.into_flattened(),
         edge_vertices,
         edge_offsets,
         edge_half_edges,
