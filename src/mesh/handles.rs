@@ -150,14 +150,11 @@ impl<'a> CellRef<'a> {
     }
 
     pub fn num_vertices(&self) -> usize {
-        let c = self.index as usize;
-        (self.mesh.cell_offsets[c + 1] - self.mesh.cell_offsets[c]) as usize
+        self.mesh.cell_range(self.index as usize).len()
     }
 
     /// The cell's vertices in order around it.
     pub fn vertex_indices(&self) -> &'a [u32] {
-        let c = self.index as usize;
-        let range = self.mesh.cell_offsets[c] as usize..self.mesh.cell_offsets[c + 1] as usize;
-        &self.mesh.he_from[range]
+        &self.mesh.he_from[self.mesh.cell_range(self.index as usize)]
     }
 }

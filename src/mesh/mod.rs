@@ -386,6 +386,16 @@ impl HalfEdgeMesh {
         self.he_from[self.next_in_cell(h) as usize]
     }
 
+    /// The half-edges of cell `c`: arithmetic on uniform cells, else two loads from
+    /// `cell_offsets`.
+    #[inline]
+    pub(crate) fn cell_range(&self, c: usize) -> std::ops::Range<usize> {
+        match self.cell_size as usize {
+            0 => self.cell_offsets[c] as usize..self.cell_offsets[c + 1] as usize,
+            n => n * c..n * c + n,
+        }
+    }
+
     #[inline]
     pub(crate) fn edge_range(&self, e: usize) -> std::ops::Range<usize> {
         self.edge_offsets[e] as usize..self.edge_offsets[e + 1] as usize

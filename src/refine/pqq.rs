@@ -111,21 +111,25 @@ pub fn child_face_and_triangle_chunks(
     triangles: impl FnMut(&[u32]),
 ) {
     match mesh.cell_size {
-        4 => {
-            let (corners, edges, counts) = uniform_cells::<4>(mesh);
-            let cell = |c| child_quads_of_cell(corners, edges, counts, c);
-            quad_and_fan_chunks(corners.len(), cell, faces, triangles)
-        }
-        3 => {
-            let (corners, edges, counts) = uniform_cells::<3>(mesh);
-            let cell = |c| child_quads_of_cell(corners, edges, counts, c);
-            quad_and_fan_chunks(corners.len(), cell, faces, triangles)
-        }
+        4 => uniform_child_chunks::<4>(mesh, faces, triangles),
+        3 => uniform_child_chunks::<3>(mesh, faces, triangles),
         _ => {
             let quad = |h: usize| [child_quad(mesh, h as u32)];
             quad_and_fan_chunks(mesh.num_half_edges(), quad, faces, triangles)
         }
     }
+}
+
+/// [`child_face_and_triangle_chunks`] for a parent whose cells all have `N` corners, cell by
+/// cell.
+fn uniform_child_chunks<const N: usize>(
+    mesh: &HalfEdgeMesh,
+    faces: impl FnMut(&[u32]),
+    triangles: impl FnMut(&[u32]),
+) {
+    let (corners, edges, counts) = uniform_cells::<N>(mesh);
+    let cell = |c| child_quads_of_cell(corners, edges, counts, c);
+    quad_and_fan_chunks(corners.len(), cell, faces, triangles)
 }
 
 /// The complete child mesh, with `positions` from [`refine_points`].

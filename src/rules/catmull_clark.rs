@@ -98,7 +98,7 @@ impl QuadSplitRules for CreasedCatmullClark<'_> {
         let ends = [vec3(mesh.positions[a as usize]), vec3(mesh.positions[b as usize])];
         let faces = vec3(face_points[c0 as usize]) + vec3(face_points[c1 as usize]);
         let (vertex_weight, face_weight) = if self.tags.smooth_triangles {
-            let size = |c: u32| mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize];
+            let size = |c: u32| mesh.cell_range(c as usize).len();
             let w = |c: u32| if size(c) == 3 { SMOOTH_TRIANGLE_EDGE_WEIGHT } else { 0.25 };
             let face_weight = 0.5 * (w(c0) + w(c1));
             (0.5 * (1.0 - 2.0 * face_weight), face_weight)

@@ -46,8 +46,9 @@ impl CornerRules for DooSabin {
     #[inline]
     fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> Vec3 {
         let c = mesh.cell_of(half_edge) as usize;
-        let (start, end) = (mesh.cell_offsets[c] as usize, mesh.cell_offsets[c + 1] as usize);
-        let corners = &mesh.he_from[start..end];
+        let range = mesh.cell_range(c);
+        let start = range.start;
+        let corners = &mesh.he_from[range];
         let n = corners.len();
         let first = half_edge as usize - start;
         if n == 4 {

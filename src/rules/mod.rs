@@ -48,14 +48,7 @@ pub(crate) fn vec3(p: [f32; 3]) -> Vec3 {
 /// The centroid of a cell: the face point of every primal scheme.
 #[inline(always)]
 pub fn centroid(mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-    let c = cell as usize;
-    // Uniform cells are found by arithmetic, without the two loads from `cell_offsets`.
-    let n = mesh.cell_size as usize;
-    let range = match n {
-        0 => mesh.cell_offsets[c] as usize..mesh.cell_offsets[c + 1] as usize,
-        _ => n * c..n * c + n,
-    };
-    let corners = &mesh.he_from[range];
+    let corners = &mesh.he_from[mesh.cell_range(cell as usize)];
     let sum = corners.iter().fold(Vec3::ZERO, |s, &v| s + vec3(mesh.positions[v as usize]));
     sum / corners.len() as f32
 }

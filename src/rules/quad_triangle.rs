@@ -89,7 +89,7 @@ impl RefinedRing {
 }
 
 fn cell_size(mesh: &HalfEdgeMesh, c: usize) -> u32 {
-    mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]
+    mesh.cell_range(c).len() as u32
 }
 
 fn position(mesh: &HalfEdgeMesh, v: u32) -> Vec3 {
