@@ -11,6 +11,7 @@ use crate::rules::{
 };
 use crate::tags::Tags;
 use serde::Deserialize;
+use std::borrow::Cow;
 use std::fmt;
 use std::str::FromStr;
 
@@ -323,7 +324,11 @@ pub fn subdivide_with_tags(mesh: &PolyMesh, options: &Options, tags: &Tags) -> R
 
 /// [`subdivide_with_tags`], returning the result as a [`Refined`], whose arrays can be copied out
 /// piece by piece.
-pub fn subdivide_refined(mesh: &PolyMesh, options: &Options, tags: &Tags) -> Result<Refined> {
+pub fn subdivide_refined(
+    mesh: &PolyMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
     subdivide_mesh_refined(base, options, tags)
 }
@@ -333,18 +338,21 @@ pub fn subdivide_refined(mesh: &PolyMesh, options: &Options, tags: &Tags) -> Res
 /// arithmetic ([`pqq`]), so that a caller can copy indices, face sizes and triangles out in
 /// cache-sized pieces without the arrays ever being stored whole (the wasm bindings do). The
 /// pieces, joined, are the arrays of [`Refined::into_poly`].
-pub struct Refined(Form);
+///
+/// The lifetime is the base mesh's when [`subdivide_mesh_borrowed`] made the result with a single
+/// quad split (the base is then the parent its faces follow from); `'static` otherwise.
+pub struct Refined<'a>(Form<'a>);
 
-enum Form {
+enum Form<'a> {
     Poly(PolyMesh),
     /// The last level's positions and the mesh it refined.
     Quads {
         positions: Vec<f32>,
-        parent: Box<HalfEdgeMesh>,
+        parent: Box<Cow<'a, HalfEdgeMesh>>,
     },
 }
 
-impl Refined {
+impl Refined<'_> {
     pub fn positions(&self) -> &[f32] {
         match &self.0 {
             Form::Poly(poly) => &poly.positions,
@@ -488,7 +496,26 @@ pub fn subdivide_mesh_refined(
     base: HalfEdgeMesh,
     options: &Options,
     tags: &Tags,
-) -> Result<Refined> {
+) -> Result<Refined<'static>> {
+    refine_levels(Cow::Owned(base), options, tags)
+}
+
+/// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
+/// options or, after [`HalfEdgeMesh::set_positions`], other positions: the build from flat
+/// arrays (OpenSubdiv's `TopologyRefinerFactory::Create`) is then paid once.
+pub fn subdivide_mesh_borrowed<'a>(
+    base: &'a HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'a>> {
+    refine_levels(Cow::Borrowed(base), options, tags)
+}
+
+fn refine_levels<'a>(
+    base: Cow<'a, HalfEdgeMesh>,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'a>> {
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -565,12 +592,12 @@ pub fn subdivide_mesh_refined(
         }
         let (child, next_tags) = match (scheme, &level_tags) {
             (Scheme::CatmullClark, Some(t)) => {
-                quad_split_tagged(mesh, &CreasedCatmullClark { boundary, tags: t }, t, last)
+                quad_split_tagged(&mesh, &CreasedCatmullClark { boundary, tags: t }, t, last)
             }
             (Scheme::CatmullClark, None) => {
                 (quad_split(mesh, &CatmullClark { boundary }, last), None)
             }
-            (Scheme::Bilinear, Some(t)) => quad_split_tagged(mesh, &Bilinear, t, last),
+            (Scheme::Bilinear, Some(t)) => quad_split_tagged(&mesh, &Bilinear, t, last),
             (Scheme::Bilinear, None) => (quad_split(mesh, &Bilinear, last), None),
             (Scheme::Loop, Some(t)) => {
                 tri_split_tagged(&mesh, &CreasedLoop { boundary, tags: t }, t, last)
@@ -609,8 +636,8 @@ pub fn subdivide_mesh_refined(
             Level::Poly(poly) if last || poly.positions.is_empty() => {
                 return Ok(Refined(Form::Poly(poly)));
             }
-            Level::Poly(poly) => HalfEdgeMesh::from_poly(&poly)?,
-            Level::Mesh(mesh) => mesh,
+            Level::Poly(poly) => Cow::Owned(HalfEdgeMesh::from_poly(&poly)?),
+            Level::Mesh(mesh) => Cow::Owned(mesh),
             Level::Quads { positions, parent } => {
                 return Ok(Refined(Form::Quads { positions, parent: Box::new(parent) }));
             }
@@ -622,13 +649,17 @@ pub fn subdivide_mesh_refined(
 /// One level's result: flat arrays, or for the last quad split the positions with the parent
 /// mesh (the faces are implicit, see [`Refined`]), or a mesh built by index arithmetic where a
 /// host can do that.
-enum Level {
+enum Level<'a> {
     Poly(PolyMesh),
-    Quads { positions: Vec<f32>, parent: HalfEdgeMesh },
+    Quads { positions: Vec<f32>, parent: Cow<'a, HalfEdgeMesh> },
     Mesh(HalfEdgeMesh),
 }
 
-fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> Level {
+fn quad_split<'a, R: QuadSplitRules>(
+    mesh: Cow<'a, HalfEdgeMesh>,
+    rules: &R,
+    last: bool,
+) -> Level<'a> {
     if last {
         let positions = pqq::refine_points(&mesh, rules).into_flattened();
         return Level::Quads { positions, parent: mesh };
@@ -640,25 +671,25 @@ fn quad_split<R: QuadSplitRules>(mesh: HalfEdgeMesh, rules: &R, last: bool) -> L
 /// [`quad_split`] with tags: the last level leaves out the children of holes; other levels
 /// return the child level's tags too.
 fn quad_split_tagged<R: QuadSplitRules>(
-    mesh: HalfEdgeMesh,
+    mesh: &HalfEdgeMesh,
     rules: &R,
     tags: &LevelTags,
     last: bool,
-) -> (Level, Option<LevelTags>) {
+) -> (Level<'static>, Option<LevelTags>) {
     if last {
-        let positions = pqq::refine_points(&mesh, rules).into_flattened();
-        let indices = pqq::child_face_indices(&mesh);
+        let positions = pqq::refine_points(mesh, rules).into_flattened();
+        let indices = pqq::child_face_indices(mesh);
         // Child cell h comes from parent half-edge h's cell.
         let hole = |f: usize| tags.is_hole(mesh.cell_of(f as u32));
         return (Level::Poly(without_holes(positions, indices, 4, tags.has_holes(), hole)), None);
     }
-    let positions = pqq::refine_points(&mesh, rules);
-    let child = pqq::child_mesh(&mesh, positions);
-    let child_tags = pqq::child_tags(&mesh, &child, tags);
+    let positions = pqq::refine_points(mesh, rules);
+    let child = pqq::child_mesh(mesh, positions);
+    let child_tags = pqq::child_tags(mesh, &child, tags);
     (Level::Mesh(child), Some(child_tags))
 }
 
-fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R, last: bool) -> Level {
+fn tri_split<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R, last: bool) -> Level<'static> {
     if last {
         let positions = ptq::refine_points(mesh, rules).into_flattened();
         let indices = ptq::child_face_indices(mesh);
@@ -676,7 +707,7 @@ fn tri_split_tagged<R: TriSplitRules>(
     rules: &R,
     tags: &LevelTags,
     last: bool,
-) -> (Level, Option<LevelTags>) {
+) -> (Level<'static>, Option<LevelTags>) {
     if last {
         let positions = ptq::refine_points(mesh, rules).into_flattened();
         let indices = ptq::child_face_indices(mesh);

@@ -153,20 +153,98 @@ fn js_error(error: Error) -> JsError {
     JsError::new(&error.to_string())
 }
 
-/// Subdivides a polygon mesh and returns the refined mesh as fresh typed arrays.
+/// Subdivides a polygon mesh and returns the refined mesh as typed arrays.
 ///
 /// `mesh.faceSizes` may be omitted when every face is a triangle. Throws an `Error` whose
 /// message says what is wrong (an unknown option, a wrong array type, an index out of range, a
 /// result larger than `maxFaces`, ...); the module stays usable after an error.
+///
+/// `into`, a previous result, lends its arrays: each one of the type and length needed is
+/// written over instead of a fresh array being made (for 4M quads, fresh arrays cost 120 ms of
+/// the call in page faults, refilling them 30). The result is a new object; use its arrays, not
+/// `into`'s, which keeps any it could not reuse.
 #[wasm_bindgen(js_name = subdivide, unchecked_return_type = "SubdivideResult")]
 pub fn subdivide(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "SubdivideResult")] into: &JsValue,
 ) -> JsResult<JsValue> {
     let (options, tags) = read_options(options).map_err(js_error)?;
+    let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
     let refined = scheme::subdivide_mesh_refined(base, &options, &tags).map_err(js_error)?;
-    refined_object(&refined)
+    refined_object(&refined, lent)
+}
+
+/// A mesh built once, to be subdivided many times: with other options (a level slider), or with
+/// other positions of the same faces (an animation, through `setPositions`). Building the
+/// connectivity from the arrays, about a third of a `subdivide` call, is then paid once; this is
+/// OpenSubdiv's split of `TopologyRefinerFactory::Create` from refining.
+///
+/// ```js
+/// const base = new BaseMesh({ positions, indices, faceSizes });
+/// let out = base.subdivide({ levels: 2 });
+/// // every frame:
+/// base.setPositions(skinnedPositions);
+/// out = base.subdivide({ levels: 2 }, out);
+/// // when done (or let the garbage collector do it):
+/// base.free();
+/// ```
+#[wasm_bindgen]
+pub struct BaseMesh {
+    mesh: HalfEdgeMesh,
+}
+
+#[wasm_bindgen]
+impl BaseMesh {
+    /// Copies and checks the arrays as `subdivide` does, and builds the connectivity. Throws
+    /// what `subdivide` would throw for the same mesh.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
+    ) -> JsResult<BaseMesh> {
+        Ok(BaseMesh { mesh: read_half_edge_mesh(mesh).map_err(js_error)? })
+    }
+
+    /// `subdivide(mesh, options, into)` for this mesh, which stays as it is.
+    #[wasm_bindgen(unchecked_return_type = "SubdivideResult")]
+    pub fn subdivide(
+        &self,
+        #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
+        #[wasm_bindgen(unchecked_optional_param_type = "SubdivideResult")] into: &JsValue,
+    ) -> JsResult<JsValue> {
+        let (options, tags) = read_options(options).map_err(js_error)?;
+        let lent = Lent::read(into).map_err(js_error)?;
+        let refined =
+            scheme::subdivide_mesh_borrowed(&self.mesh, &options, &tags).map_err(js_error)?;
+        refined_object(&refined, lent)
+    }
+
+    /// Moves the vertices: x, y, z per vertex, as many vertices as the mesh has, all finite.
+    /// The faces stay. Throws, and leaves the mesh as it was, otherwise.
+    #[wasm_bindgen(js_name = setPositions)]
+    pub fn set_positions(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] positions: &JsValue,
+    ) -> JsResult<()> {
+        if typed_array_kind(positions).as_deref() != Some("Float32Array") {
+            return Err(js_error(wrong_array_type("positions", "Float32Array", positions)));
+        }
+        let positions = copy_vertices(positions).map_err(js_error)?;
+        self.mesh.set_positions(positions).map_err(js_error)
+    }
+
+    /// The number of vertices, which `setPositions` takes 3 numbers each of.
+    #[wasm_bindgen(getter, js_name = numVertices)]
+    pub fn num_vertices(&self) -> u32 {
+        self.mesh.num_vertices() as u32
+    }
+
+    /// The number of faces.
+    #[wasm_bindgen(getter, js_name = numFaces)]
+    pub fn num_faces(&self) -> u32 {
+        self.mesh.num_cells() as u32
+    }
 }
 
 /// Parses the text of a Wavefront OBJ file: `v` and `f` lines, and OpenSubdiv's `t` tag lines
@@ -670,25 +748,48 @@ fn typed_array_kind(value: &JsValue) -> Option<String> {
     Reflect::get(value, &js_sys::Symbol::to_string_tag()).ok()?.as_string()
 }
 
-/// `%TypedArray%.prototype`'s own property `key` (the `length` getter, `set`).
-fn typed_array_intrinsic(key: &str, getter: bool) -> Result<js_sys::Function, JsValue> {
+/// The `%TypedArray%.prototype` getters and methods the copies use, rather than whatever the
+/// caller's arrays inherit or shadow: no caller code runs while an array is sized, checked and
+/// written. Looked up once per module instance.
+struct Intrinsics {
+    length: js_sys::Function,
+    buffer: js_sys::Function,
+    set: js_sys::Function,
+    fill: js_sys::Function,
+}
+
+thread_local! {
+    static INTRINSICS: std::cell::RefCell<Option<std::rc::Rc<Intrinsics>>> = Default::default();
+}
+
+fn intrinsics() -> Result<std::rc::Rc<Intrinsics>, JsValue> {
+    if let Some(found) = INTRINSICS.with(|cell| cell.borrow().clone()) {
+        return Ok(found);
+    }
     let prototype =
         Object::get_prototype_of(&Object::get_prototype_of(&Uint32Array::new_with_length(0)));
-    let value = if getter {
+    let getter = |key: &str| -> Result<js_sys::Function, JsValue> {
         let descriptor = Reflect::get_own_property_descriptor(&prototype, &JsValue::from_str(key))?;
-        Reflect::get(&descriptor, &JsValue::from_str("get"))?
-    } else {
-        Reflect::get(&prototype, &JsValue::from_str(key))?
+        Reflect::get(&descriptor, &JsValue::from_str("get"))?.dyn_into()
     };
-    value.dyn_into()
+    let method = |key: &str| -> Result<js_sys::Function, JsValue> {
+        Reflect::get(&prototype, &JsValue::from_str(key))?.dyn_into()
+    };
+    let found = std::rc::Rc::new(Intrinsics {
+        length: getter("length")?,
+        buffer: getter("buffer")?,
+        set: method("set")?,
+        fill: method("fill")?,
+    });
+    INTRINSICS.with(|cell| *cell.borrow_mut() = Some(found.clone()));
+    Ok(found)
 }
 
 /// The element count of a typed array, from the `%TypedArray%.prototype.length` getter itself:
 /// a `length` the caller shadowed never runs.
 fn typed_array_length(source: &JsValue, field: &str) -> Result<u32, Error> {
-    let length = typed_array_intrinsic("length", true)
-        .and_then(|getter| getter.call0(source))
-        .map_err(|e| copy_threw(field, e))?;
+    let length =
+        intrinsics().and_then(|i| i.length.call0(source)).map_err(|e| copy_threw(field, e))?;
     Ok(length.as_f64().unwrap_or_default() as u32)
 }
 
@@ -713,9 +814,7 @@ fn copy_in<T: Default + Clone>(
     // buffer. JS writes `out` through it as `copy_to` would; nothing else holds `out`.
     let buffer = wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer();
     let target = view(&buffer, out.as_mut_ptr() as u32, length);
-    typed_array_intrinsic("set", false)
-        .and_then(|set| Reflect::apply(&set, &target, &Array::of1(source)))
-        .map_err(|e| copy_threw(field, e))?;
+    intrinsics().and_then(|i| i.set.call1(&target, source)).map_err(|e| copy_threw(field, e))?;
     Ok(out)
 }
 
@@ -814,50 +913,136 @@ fn mesh_object(mesh: &PolyMesh) -> JsResult<JsValue> {
     Ok(object.into())
 }
 
+/// The arrays an `into` object lends, read before any work so that its getters run first and
+/// a wrong `into` fails fast. Whether each can be reused is decided when the result is written.
+struct Lent {
+    arrays: [JsValue; 4],
+}
+
+/// The result's fields, in the order of [`Lent::arrays`], with the typed array each must be.
+const RESULT_FIELDS: [(&str, &str); 4] = [
+    ("positions", "Float32Array"),
+    ("indices", "Uint32Array"),
+    ("faceSizes", "Uint32Array"),
+    ("triangles", "Uint32Array"),
+];
+
+impl Lent {
+    fn read(into: &JsValue) -> Result<Lent, Error> {
+        let mut arrays: [JsValue; 4] = Default::default();
+        if into.is_undefined() || into.is_null() {
+            return Ok(Lent { arrays });
+        }
+        if !into.is_object() || is_array(into) {
+            return Err(Error::Unsupported(format!(
+                "into must be a result of an earlier subdivide call, to reuse its arrays, or \
+                 undefined; got {}",
+                describe(into)
+            )));
+        }
+        for (slot, (key, kind)) in arrays.iter_mut().zip(RESULT_FIELDS) {
+            let value = Reflect::get(into, &JsValue::from_str(key)).map_err(|e| {
+                Error::Unsupported(format!("reading into.{key} threw {}", describe(&e)))
+            })?;
+            if typed_array_kind(&value).as_deref() == Some(kind) {
+                *slot = value;
+            }
+        }
+        Ok(Lent { arrays })
+    }
+
+    /// Field `i`'s array when it has `len` elements, is not a view of wasm memory (which the
+    /// writes would corrupt) and was not handed out already (one array lent for two fields);
+    /// else a fresh array.
+    fn take(&mut self, i: usize, len: usize, intrinsics: &Intrinsics) -> JsResult<JsValue> {
+        let lent = std::mem::take(&mut self.arrays[i]);
+        if !lent.is_undefined() {
+            let fits =
+                intrinsics.length.call0(&lent).ok().and_then(|n| n.as_f64()) == Some(len as f64);
+            let ours = intrinsics.buffer.call0(&lent).is_ok_and(|b| {
+                b == wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer()
+            });
+            let again = self.arrays.iter().any(|other| Object::is(other, &lent));
+            if fits && !ours && !again {
+                return Ok(lent);
+            }
+        }
+        let len = u32::try_from(len).map_err(|_| {
+            JsError::new(&format!("the result's {} is too long", RESULT_FIELDS[i].0))
+        })?;
+        Ok(match RESULT_FIELDS[i].1 {
+            "Float32Array" => Float32Array::new_with_length(len).into(),
+            _ => Uint32Array::new_with_length(len).into(),
+        })
+    }
+}
+
 /// `subdivide`'s result. The index arrays are copied into JS piece by piece as the result hands
 /// them over, so that those it keeps implicit (the faces of a last quad split, and every fan
 /// triangulation) are never written whole to wasm memory and read back.
-fn refined_object(refined: &Refined) -> JsResult<JsValue> {
+fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsValue> {
+    let intrinsics = intrinsics().map_err(|e| JsError::new(&describe(&e)))?;
+    let positions = refined.positions();
+    let mut out = Output::new(lent.take(0, positions.len(), &intrinsics)?, &intrinsics);
+    // SAFETY: the view is used at once, before anything can allocate (and so grow the memory).
+    out.push(positions, |chunk| unsafe { Float32Array::view(chunk) }.into());
+    let mut indices = Output::new(lent.take(1, refined.num_indices(), &intrinsics)?, &intrinsics);
+    let sizes = lent.take(2, refined.num_faces(), &intrinsics)?;
+    let triangles = lent.take(3, refined.num_triangle_indices(), &intrinsics)?;
+    let mut triangles = Output::new(triangles, &intrinsics);
+    refined
+        .index_and_triangle_chunks(|c| indices.push(c, u32_view), |c| triangles.push(c, u32_view));
+    let mut face_sizes = Output::new(sizes, &intrinsics);
+    match refined.uniform_face_size() {
+        Some(n) => face_sizes.fill(n),
+        None => refined.face_size_chunks(|c| face_sizes.push(c, u32_view)),
+    }
     let object = Object::new();
-    set_field(&object, "positions", &Float32Array::from(refined.positions()))?;
-    let mut indices = Filler::new(refined.num_indices());
-    let mut triangles = Filler::new(refined.num_triangle_indices());
-    refined.index_and_triangle_chunks(|c| indices.push(c), |c| triangles.push(c));
-    let face_sizes = match refined.uniform_face_size() {
-        Some(n) => {
-            let len = refined.num_faces() as u32;
-            Uint32Array::new_with_length(len).fill(n, 0, len)
-        }
-        None => {
-            let mut face_sizes = Filler::new(refined.num_faces());
-            refined.face_size_chunks(|c| face_sizes.push(c));
-            face_sizes.array
-        }
-    };
-    set_field(&object, "indices", &indices.array)?;
-    set_field(&object, "faceSizes", &face_sizes)?;
-    set_field(&object, "triangles", &triangles.array)?;
+    set_field(&object, "positions", &out.finish()?)?;
+    set_field(&object, "indices", &indices.finish()?)?;
+    set_field(&object, "faceSizes", &face_sizes.finish()?)?;
+    set_field(&object, "triangles", &triangles.finish()?)?;
     Ok(object.into())
 }
 
-/// A JS array filled from consecutive pieces.
-struct Filler {
-    array: Uint32Array,
-    len: usize,
-    at: usize,
+fn u32_view(chunk: &[u32]) -> JsValue {
+    // SAFETY: as for the positions in `refined_object`: used before anything allocates.
+    unsafe { Uint32Array::view(chunk) }.into()
 }
 
-impl Filler {
-    fn new(len: usize) -> Self {
-        Filler { array: Uint32Array::new_with_length(len as u32), len, at: 0 }
+/// A JS typed array of the length needed, filled from consecutive pieces through the
+/// intrinsic `set` (the array may be the caller's, from `into`). The first failure is kept for
+/// [`Output::finish`] and stops the writes.
+struct Output<'i> {
+    array: JsValue,
+    at: u32,
+    intrinsics: &'i Intrinsics,
+    failed: Option<JsValue>,
+}
+
+impl<'i> Output<'i> {
+    fn new(array: JsValue, intrinsics: &'i Intrinsics) -> Self {
+        Output { array, at: 0, intrinsics, failed: None }
     }
 
-    fn push(&mut self, chunk: &[u32]) {
-        // Never past the end, even if the pieces were to add up to more (copy_from needs equal
-        // lengths, and a panic would take the module down).
-        let n = chunk.len().min(self.len - self.at);
-        self.array.subarray(self.at as u32, (self.at + n) as u32).copy_from(&chunk[..n]);
-        self.at += n;
+    /// Writes `chunk` after the pieces before it; `set` itself refuses to write past the end.
+    fn push<T>(&mut self, chunk: &[T], view: impl Fn(&[T]) -> JsValue) {
+        if self.failed.is_none() {
+            let at = JsValue::from(self.at);
+            self.failed = self.intrinsics.set.call2(&self.array, &view(chunk), &at).err();
+            self.at += chunk.len() as u32;
+        }
+    }
+
+    fn fill(&mut self, value: u32) {
+        self.failed = self.intrinsics.fill.call1(&self.array, &JsValue::from(value)).err();
+    }
+
+    fn finish(self) -> JsResult<JsValue> {
+        match self.failed {
+            None => Ok(self.array),
+            Some(e) => Err(JsError::new(&format!("writing the result threw {}", describe(&e)))),
+        }
     }
 }
 

@@ -170,3 +170,26 @@ fn from_vertices_is_from_faces_without_the_copies() {
         assert!(error_of(tri.as_flattened(), &indices, &sizes).contains(expected));
     }
 }
+
+/// `set_positions` replaces the positions and nothing else, and refuses another vertex count or a
+/// non-finite coordinate (naming it, as the builder does) without changing the mesh.
+#[test]
+fn set_positions_keeps_the_connectivity() {
+    let mut mesh = HalfEdgeMesh::from_poly(&cube()).unwrap();
+    let before = mesh.clone();
+    let moved: Vec<[f32; 3]> = mesh.positions().iter().map(|p| [p[2], p[0], p[1] + 1.0]).collect();
+    mesh.set_positions(moved.clone()).unwrap();
+    assert_eq!(mesh.positions(), &moved[..]);
+    assert_eq!(mesh.face_indices(), before.face_indices());
+    let rebuilt = HalfEdgeMesh::from_faces(moved.as_flattened(), before.face_indices(), &[4; 6]);
+    assert_eq!(mesh, rebuilt.unwrap(), "as if built with the new positions");
+
+    let changed = mesh.clone();
+    let short = mesh.set_positions(moved[..7].to_vec()).unwrap_err().to_string();
+    assert!(short.contains("7 vertices") && short.contains("the mesh has 8"), "{short}");
+    let mut nan = moved.clone();
+    nan[5][2] = f32::INFINITY;
+    let infinite = mesh.set_positions(nan).unwrap_err().to_string();
+    assert!(infinite.contains("vertex 5 has coordinate z = inf"), "{infinite}");
+    assert_eq!(mesh, changed, "a refused call changes nothing");
+}

@@ -3,9 +3,9 @@
 //! implicit faces of a last untagged quad split, or flat arrays), across piece boundaries, and
 //! the fan of the implicit faces is `PolyMesh::triangles` of the flat ones.
 
-use subsurf::scheme::{subdivide_refined, Refined};
+use subsurf::scheme::{subdivide_mesh_borrowed, subdivide_refined, Refined};
 use subsurf::shapes::{cube, grid, prism, torus, torus_triangles};
-use subsurf::{Crease, Options, PolyMesh, Scheme, Tags};
+use subsurf::{Crease, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 fn joined(len: usize, fill: impl FnOnce(&mut dyn FnMut(&[u32]))) -> Vec<u32> {
     let mut out = Vec::new();
@@ -66,5 +66,44 @@ fn pieces_join_up_to_the_flat_arrays() {
                 }
             }
         }
+    }
+}
+
+/// `subdivide_mesh_borrowed` runs the same levels on a base it leaves as it was: its results are
+/// those of the flat-array API, call after call, with tags and without, for a single quad split
+/// (whose implicit faces follow from the borrowed base) and for more levels; and after
+/// `set_positions`, those of the flat API on the moved mesh.
+#[test]
+fn a_borrowed_base_gives_the_same_results_and_stays() {
+    let mut crease = Tags::default();
+    crease.creases.push(Crease { vertices: [0, 1], sharpness: 2.0 });
+    for (name, mesh) in [("cube", cube()), ("triangle torus", torus_triangles(8, 8, 1.0, 0.25))] {
+        let mut base = HalfEdgeMesh::from_poly(&mesh).expect(name);
+        let kept = base.clone();
+        let triangles = mesh.face_sizes.iter().all(|&n| n == 3);
+        for &scheme in Scheme::ALL.iter().filter(|s| triangles || !s.triangles_only()) {
+            for levels in 0..=2 {
+                let options = Options::new(scheme, levels);
+                let tagged = matches!(scheme, Scheme::CatmullClark | Scheme::Loop);
+                for tags in [&Tags::default(), &crease].into_iter().take(1 + tagged as usize) {
+                    let what = format!("{name} {scheme} {levels} {tags:?}");
+                    let expected =
+                        subsurf::subdivide_with_tags(&mesh, &options, tags).expect(&what);
+                    for _ in 0..2 {
+                        let got = subdivide_mesh_borrowed(&base, &options, tags).expect(&what);
+                        assert_eq!(got.into_poly(), expected, "{what}");
+                    }
+                    assert_eq!(base, kept, "{what}: the base is unchanged");
+                }
+            }
+        }
+        let moved: Vec<[f32; 3]> =
+            base.positions().iter().map(|p| p.map(|x| 3.0 * x - 0.5)).collect();
+        let moved_poly = PolyMesh { positions: moved.as_flattened().to_vec(), ..mesh.clone() };
+        base.set_positions(moved).expect(name);
+        let options = Options::new(Scheme::CatmullClark, 2);
+        let expected = subsurf::subdivide(&moved_poly, &options).expect(name);
+        let got = subdivide_mesh_borrowed(&base, &options, &Tags::default()).expect(name);
+        assert_eq!(got.into_poly(), expected, "{name}: moved");
     }
 }

@@ -93,6 +93,20 @@ fn mixed_to_vertices(indices: &[u32], cell_offsets: &[u32]) -> Vec<u32> {
     he_to
 }
 
+/// Refuses a NaN or infinite coordinate, naming the first.
+pub(crate) fn check_finite(positions: &[f32]) -> Result<()> {
+    if positions.iter().fold(true, |ok, x| ok & x.is_finite()) {
+        return Ok(());
+    }
+    let i = positions.iter().position(|x| !x.is_finite()).unwrap_or_default();
+    Err(Error::mesh(format!(
+        "vertex {} has coordinate {} = {}; every coordinate must be a finite number",
+        i / 3,
+        ["x", "y", "z"][i % 3],
+        positions[i]
+    )))
+}
+
 fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {
     if !positions.len().is_multiple_of(3) {
         return Err(positions_not_in_threes(positions.len()));
@@ -102,15 +116,7 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     }
     // Whole-array checks that vectorise (no early exit) come first; only a failure pays for
     // finding the culprit.
-    if !positions.iter().fold(true, |ok, x| ok & x.is_finite()) {
-        let i = positions.iter().position(|x| !x.is_finite()).unwrap_or_default();
-        return Err(Error::mesh(format!(
-            "vertex {} has coordinate {} = {}; every coordinate must be a finite number",
-            i / 3,
-            ["x", "y", "z"][i % 3],
-            positions[i]
-        )));
-    }
+    check_finite(positions)?;
     let num_vertices = positions.len() / 3;
     if num_vertices > u32::MAX as usize / 4 {
         return Err(Error::mesh(format!(

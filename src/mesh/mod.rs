@@ -239,6 +239,25 @@ impl HalfEdgeMesh {
         }
     }
 
+    /// Replaces every position (`[x, y, z]` per vertex, as many vertices as the mesh has) and
+    /// keeps the connectivity: for meshes that move but keep their faces, subdivided again with
+    /// [`crate::scheme::subdivide_mesh_borrowed`] without a rebuild. On an error (another count,
+    /// a non-finite value) the mesh is unchanged.
+    pub fn set_positions(&mut self, positions: Vec<[f32; 3]>) -> Result<()> {
+        if positions.len() != self.positions.len() {
+            return Err(crate::Error::mesh(format!(
+                "the new positions have {} vertices ({} numbers), but the mesh has {}; give \
+                 3 numbers per vertex, or build a new mesh for another vertex count",
+                positions.len(),
+                3 * positions.len(),
+                self.positions.len()
+            )));
+        }
+        build::check_finite(positions.as_flattened())?;
+        self.positions = positions;
+        Ok(())
+    }
+
     /// Sets the coordinates of vertex `v`. Fails on a missing vertex or a non-finite value.
     pub fn set_coord(&mut self, v: u32, coord: [f32; 3]) -> Result<()> {
         if !coord.iter().all(|c| c.is_finite()) {

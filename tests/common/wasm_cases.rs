@@ -3,7 +3,7 @@
 //! typed arrays and plain JS objects, as a web page would call it.
 
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
-use subsurf::wasm::{read_obj, subdivide, version, write_obj};
+use subsurf::wasm::{read_obj, version, write_obj};
 use wasm_bindgen::{JsCast, JsError, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test;
 
@@ -43,6 +43,11 @@ fn object(fields: &[(&str, JsValue)]) -> JsValue {
         Reflect::set(&object, &JsValue::from_str(key), value).unwrap();
     }
     object.into()
+}
+
+/// `subsurf::wasm::subdivide` without `into`, as most cases call it.
+fn subdivide(mesh: &JsValue, options: &JsValue) -> Result<JsValue, JsError> {
+    subsurf::wasm::subdivide(mesh, options, &JsValue::UNDEFINED)
 }
 
 fn levels(n: f64) -> JsValue {
@@ -585,3 +590,6 @@ mod schemes;
 
 #[path = "wasm_bad_inputs.rs"]
 mod bad_inputs;
+
+#[path = "wasm_reuse.rs"]
+mod reuse;

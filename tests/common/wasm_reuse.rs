@@ -1,0 +1,176 @@
+//! Reuse across calls: `subdivide`'s `into` (a previous result lends its arrays) and `BaseMesh`
+//! (the mesh built once, subdivided again with other options or other positions). The expected
+//! values are those of a plain `subdivide` call on the same input, which the other cases check
+//! against the seeds and OpenSubdiv; here the results must be identical to it, bit for bit,
+//! since the same arithmetic runs.
+use super::*;
+use subsurf::wasm::BaseMesh;
+
+const RESULT_KEYS: [&str; 4] = ["positions", "indices", "faceSizes", "triangles"];
+
+fn into(mesh: &JsValue, options: &JsValue, lent: &JsValue) -> JsValue {
+    ok(subsurf::wasm::subdivide(mesh, options, lent))
+}
+
+fn same(a: &JsValue, b: &JsValue) -> bool {
+    Object::is(a, b)
+}
+
+/// Equal arrays, key by key.
+fn assert_same_values(a: &JsValue, b: &JsValue, what: &str) {
+    assert_eq!(f32s(a, "positions"), f32s(b, "positions"), "{what}: positions");
+    for key in &RESULT_KEYS[1..] {
+        assert_eq!(u32s(a, key), u32s(b, key), "{what}: {key}");
+    }
+}
+
+/// The cube with every coordinate doubled and shifted by 1 (a vertex count of 8).
+fn moved_cube_positions() -> Vec<f32> {
+    cube_arrays().0.iter().map(|x| 2.0 * x + 1.0).collect()
+}
+
+fn moved_cube() -> JsValue {
+    let (_, i, s) = cube_arrays();
+    js_mesh(&moved_cube_positions(), &i, Some(&s))
+}
+
+#[wasm_bindgen_test]
+fn into_arrays_of_the_right_length_are_written_over() {
+    let first = ok(subdivide(&cube(), &levels(2.0)));
+    let second = into(&moved_cube(), &levels(2.0), &first);
+    for key in RESULT_KEYS {
+        assert!(same(&field(&second, key), &field(&first, key)), "{key} reused");
+    }
+    assert!(!same(&second, &first), "the result is a new object");
+    let fresh = ok(subdivide(&moved_cube(), &levels(2.0)));
+    assert_same_values(&second, &fresh, "written over");
+
+    // Level 1 needs other lengths: fresh arrays, and the lent ones are left alone.
+    let third = into(&cube(), &levels(1.0), &second);
+    for key in RESULT_KEYS {
+        assert!(!same(&field(&third, key), &field(&second, key)), "{key} not reused");
+    }
+    assert_same_values(&third, &ok(subdivide(&cube(), &levels(1.0))), "fresh");
+    assert_same_values(&second, &fresh, "the lent arrays that did not fit");
+}
+
+#[wasm_bindgen_test]
+fn into_arrays_of_another_type_or_lent_twice_are_not_reused() {
+    let (p, i) = tetrahedron_arrays();
+    let tetra = js_mesh(&p, &i, None);
+    let options = object(&[("scheme", "loop".into())]);
+    let expected = ok(subdivide(&tetra, &options));
+    // Loop's result has as many indices as triangle indices (48), so one array fits both.
+    let shared: JsValue = Uint32Array::new_with_length(48).into();
+    let wrong_type: JsValue = Uint32Array::new_with_length(3 * 10).into();
+    let lent = object(&[
+        ("positions", wrong_type.clone()),
+        ("indices", shared.clone()),
+        ("triangles", shared.clone()),
+    ]);
+    let out = into(&tetra, &options, &lent);
+    assert!(!same(&field(&out, "positions"), &wrong_type));
+    assert!(field(&out, "positions").is_instance_of::<Float32Array>());
+    let reused = [same(&field(&out, "indices"), &shared), same(&field(&out, "triangles"), &shared)];
+    assert_eq!(reused.iter().filter(|&&r| r).count(), 1, "one field gets the array: {reused:?}");
+    assert_same_values(&out, &expected, "partly lent");
+}
+
+/// The writes would corrupt the module's own memory: such an array is never used.
+#[wasm_bindgen_test]
+fn into_views_of_wasm_memory_are_not_written() {
+    let expected = ok(subdivide(&cube(), &levels(1.0)));
+    let buffer = field(&wasm_bindgen::memory(), "buffer");
+    let length = f32s(&expected, "positions").len() as u32;
+    let view = Float32Array::new_with_byte_offset_and_length(&buffer, 0, length);
+    let before = view.to_vec();
+    let out = into(&cube(), &levels(1.0), &object(&[("positions", view.clone().into())]));
+    assert!(!same(&field(&out, "positions"), &view));
+    assert_eq!(view.to_vec(), before);
+    assert_same_values(&out, &expected, "not lent");
+}
+
+#[wasm_bindgen_test]
+fn into_that_is_not_an_object_is_refused() {
+    for (value, shown) in [(JsValue::from_f64(5.0), "5"), ("out".into(), "string 'out'")] {
+        let m = thrown(subsurf::wasm::subdivide(&cube(), &levels(1.0), &value));
+        assert_mentions(&m, &["into must be a result of an earlier subdivide call", shown]);
+    }
+    let array: JsValue = Array::new().into();
+    assert_mentions(&thrown(subsurf::wasm::subdivide(&cube(), &levels(1.0), &array)), &["Array"]);
+    // null and undefined mean no reuse.
+    assert_same_values(
+        &into(&cube(), &levels(1.0), &JsValue::NULL),
+        &ok(subdivide(&cube(), &levels(1.0))),
+        "null",
+    );
+}
+
+#[wasm_bindgen_test]
+fn base_mesh_gives_what_subdivide_gives() {
+    let (p, i) = tetrahedron_arrays();
+    let tetra = js_mesh(&p, &i, None);
+    let crease = object(&[
+        ("edges", Uint32Array::from(&[0u32, 1][..]).into()),
+        ("sharpness", Float32Array::from(&[2.5f32][..]).into()),
+    ]);
+    let cases = [
+        // A single quad split keeps the base as the parent of its implicit faces.
+        (cube(), levels(1.0)),
+        (cube(), levels(3.0)),
+        (cube(), object(&[("scheme", "doo-sabin".into()), ("levels", 2.into())])),
+        (cube(), object(&[("creases", crease), ("levels", 2.into())])),
+        (tetra.clone(), object(&[("scheme", "loop".into()), ("levels", 2.into())])),
+        (tetra, object(&[("scheme", "sqrt3".into()), ("levels", 0.into())])),
+    ];
+    for (n, (mesh, options)) in cases.iter().enumerate() {
+        let base = BaseMesh::new(mesh).unwrap_or_else(|e| panic!("case {n}: {}", message(e)));
+        let expected = ok(subdivide(mesh, options));
+        let first = ok(base.subdivide(options, &JsValue::UNDEFINED));
+        assert_same_values(&first, &expected, &format!("case {n}"));
+        let again = ok(base.subdivide(options, &first));
+        assert!(same(&field(&again, "positions"), &field(&first, "positions")));
+        assert_same_values(&again, &expected, &format!("case {n}, again into the first"));
+    }
+}
+
+#[wasm_bindgen_test]
+fn base_mesh_set_positions_moves_the_result() {
+    let mut base = BaseMesh::new(&cube()).unwrap_or_else(|e| panic!("{}", message(e)));
+    assert_eq!((base.num_vertices(), base.num_faces()), (8, 6));
+    let moved = Float32Array::from(&moved_cube_positions()[..]);
+    base.set_positions(&moved).unwrap_or_else(|e| panic!("{}", message(e)));
+    let expected = ok(subdivide(&moved_cube(), &levels(2.0)));
+    assert_same_values(&ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED)), &expected, "moved");
+
+    let mut nan = moved_cube_positions();
+    nan[3 * 3 + 1] = f32::NAN;
+    let refused: [(JsValue, &[&str]); 4] = [
+        (Float32Array::new_with_length(21).into(), &["7 vertices", "the mesh has 8"]),
+        (Float32Array::new_with_length(25).into(), &["25", "3"]),
+        (Float32Array::from(&nan[..]).into(), &["vertex 3 has coordinate y = NaN"]),
+        (Array::of1(&1.into()).into(), &["positions must be a Float32Array", "Array"]),
+    ];
+    for (positions, parts) in refused {
+        assert_mentions(&thrown(base.set_positions(&positions)), parts);
+    }
+    let after = ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED));
+    assert_same_values(&after, &expected, "unchanged by the refused calls");
+    assert_eq!(moved.to_vec(), moved_cube_positions(), "the caller's array is only read");
+}
+
+#[wasm_bindgen_test]
+fn base_mesh_refuses_what_subdivide_refuses() {
+    let (p, mut i, s) = cube_arrays();
+    i[5] = 99;
+    let bad = js_mesh(&p, &i, Some(&s));
+    let from_subdivide = thrown(subdivide(&bad, &levels(1.0)));
+    let from_base = thrown(BaseMesh::new(&bad).map(|base| base.num_faces()));
+    assert_eq!(from_base, from_subdivide);
+    assert_mentions(&from_base, &["99"]);
+    let base = BaseMesh::new(&cube()).unwrap_or_else(|e| panic!("{}", message(e)));
+    assert_mentions(&thrown(base.subdivide(&levels_typo(), &JsValue::UNDEFINED)), &["'levels'"]);
+    let too_many = object(&[("levels", 9.into()), ("maxFaces", 1000.into())]);
+    assert_mentions(&thrown(base.subdivide(&too_many, &JsValue::UNDEFINED)), &["maxFaces"]);
+    assert_eq!(u32s(&ok(base.subdivide(&levels(1.0), &JsValue::UNDEFINED)), "faceSizes").len(), 24);
+}
