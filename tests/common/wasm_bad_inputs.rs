@@ -251,7 +251,7 @@ fn caller_arrays_are_byte_identical_after_every_scheme() {
 // Hostile JS values
 
 /// A value made by a snippet of JS (`return ...`).
-fn js(body: &str) -> JsValue {
+pub(super) fn js(body: &str) -> JsValue {
     js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
 }
 

@@ -174,3 +174,42 @@ fn base_mesh_refuses_what_subdivide_refuses() {
     assert_mentions(&thrown(base.subdivide(&too_many, &JsValue::UNDEFINED)), &["maxFaces"]);
     assert_eq!(u32s(&ok(base.subdivide(&levels(1.0), &JsValue::UNDEFINED)), "faceSizes").len(), 24);
 }
+
+/// An `into` a page can pass by mistake or on purpose. Its getters may throw (an error naming
+/// the field); its arrays may be detached, lie about their `length`, or shadow `set` and `fill`
+/// (none of that code runs: the intrinsics size and write them, so a lying array is not reused
+/// and a shadowed method is not called). The result is always the plain call's.
+#[wasm_bindgen_test]
+fn hostile_into_objects_give_errors_or_fresh_arrays() {
+    use super::bad_inputs::js;
+    let expected = ok(subdivide(&cube(), &levels(1.0)));
+    let refused = [
+        (
+            "return { get positions() { throw new Error('boom'); } }",
+            "reading into.positions threw Error 'boom'",
+        ),
+        (
+            "return new Proxy({}, { get() { throw new Error('trap'); } })",
+            "reading into.positions threw Error 'trap'",
+        ),
+    ];
+    for (body, part) in refused {
+        assert_mentions(
+            &thrown(subsurf::wasm::subdivide(&cube(), &levels(1.0), &js(body))),
+            &[part],
+        );
+    }
+    let lying = "const a = new Float32Array(5); Object.defineProperty(a, 'length', { value: 78 }); return { positions: a };";
+    let detached = "const a = new Uint32Array(96); structuredClone(a.buffer, { transfer: [a.buffer] }); return { indices: a };";
+    let shadowing = "const no = () => { throw new Error('called'); }; const t = new Uint32Array(144); t.set = no; const f = new Uint32Array(24); f.fill = no; return { triangles: t, faceSizes: f };";
+    for body in [lying, detached, shadowing] {
+        let lent = js(body);
+        let out = into(&cube(), &levels(1.0), &lent);
+        assert_same_values(&out, &expected, body);
+        let reused: Vec<_> =
+            RESULT_KEYS.iter().filter(|k| same(&field(&out, k), &field(&lent, k))).collect();
+        let expect_reused: &[&str] =
+            if body == shadowing { &["faceSizes", "triangles"] } else { &[] };
+        assert_eq!(reused, expect_reused.iter().collect::<Vec<_>>(), "{body}");
+    }
+}

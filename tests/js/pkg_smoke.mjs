@@ -106,6 +106,30 @@ for (const [name, api] of [['subsurf/node', node], ['initSync', viaInitSync], ['
     assert.equal(api.subdivide(cube(), { levels: 2 }).faceSizes.length, 96);
   });
 
+  // Through the generated class glue (the wasm-bindgen tests call the Rust methods directly).
+  check(`${name}: BaseMesh, setPositions and into`, () => {
+    const base = new api.BaseMesh(cube());
+    assert.equal(base.numVertices, 8);
+    assert.equal(base.numFaces, 6);
+    const plain = api.subdivide(cube(), { levels: 2 });
+    const first = base.subdivide({ levels: 2 });
+    assert.deepEqual(first, plain);
+    base.setPositions(cube().positions.map((x) => 2 * x));
+    const second = base.subdivide({ levels: 2 }, first);
+    for (const key of ['positions', 'indices', 'faceSizes', 'triangles']) assert.equal(second[key], first[key], `${key} reused`);
+    // Catmull-Clark commutes with scaling (affine invariance): twice the input, twice the result.
+    assert.ok(second.positions.every((x, i) => near(x, 2 * plain.positions[i])), 'moved');
+    assert.deepEqual(second.indices, plain.indices);
+    assert.throws(() => base.setPositions(new Float32Array(3)), /1 vertices.*the mesh has 8/);
+    assert.throws(() => base.subdivide({ levels: 1 }, 5), /into must be a result of an earlier subdivide call/);
+    const reused = api.subdivide(cube(), { levels: 2 }, second);
+    assert.equal(reused.positions, second.positions);
+    assert.deepEqual(reused, plain);
+    base.free();
+    assert.throws(() => base.subdivide({ levels: 1 }), Error, 'a freed BaseMesh throws');
+    assert.equal(api.subdivide(cube(), { levels: 1 }).faceSizes.length, 24, 'and the module works on');
+  });
+
   check(`${name}: OBJ round trip`, () => {
     const refined = api.subdivide(cube(), { levels: 1 });
     const again = api.readObj(api.writeObj(refined));
@@ -119,7 +143,11 @@ for (const [name, api] of [['subsurf/node', node], ['initSync', viaInitSync], ['
 const dts = readFileSync(join(installed, 'subsurf.d.ts'), 'utf8').replace(/\s+/g, ' ');
 check('subsurf.d.ts', () => {
   for (const line of [
-    'export function subdivide(mesh: SubdivideMesh, options?: SubdivideOptions): SubdivideResult;',
+    'export function subdivide(mesh: SubdivideMesh, options?: SubdivideOptions, into?: SubdivideResult): SubdivideResult;',
+    'export class BaseMesh {',
+    'constructor(mesh: SubdivideMesh);',
+    'subdivide(options?: SubdivideOptions, into?: SubdivideResult): SubdivideResult;',
+    'setPositions(positions: Float32Array): void;',
     'export function readObj(text: string): ObjMesh;',
     'export interface ObjMesh extends PolygonMesh { tags: ObjTags; }',
     'export function writeObj(mesh: SubdivideMesh): string;',
