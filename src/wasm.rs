@@ -2,8 +2,8 @@
 //!
 //! This layer only converts and checks. Mesh fields are read with `Reflect` calls (a throwing
 //! getter becomes an error) and copied into Rust-owned vectors, so the caller's arrays are never
-//! written; outputs are fresh typed arrays, never views of wasm memory (those go stale when memory
-//! grows). Every failure is a `Result`: a panic would abort the module instance and break every
+//! written; outputs are fresh typed arrays, or those the caller lends back for the purpose
+//! (`into`), never views of wasm memory (those go stale when memory grows). Every failure is a `Result`: a panic would abort the module instance and break every
 //! later call on the page.
 //!
 //! ```js
@@ -114,7 +114,10 @@ export interface ObjMesh extends PolygonMesh {
   tags: ObjTags;
 }
 
-/** The refined mesh: fresh arrays owned by the caller. */
+/**
+ * The refined mesh: arrays owned by the caller, fresh or (when passed back as `into`) written
+ * over by a later call.
+ */
 export interface SubdivideResult extends PolygonMesh {
   /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */
   triangles: Uint32Array;
