@@ -3,8 +3,8 @@
 //! This layer only converts and checks. Mesh fields are read with `Reflect` calls (a throwing
 //! getter becomes an error) and copied into Rust-owned vectors, so the caller's arrays are never
 //! written; outputs are fresh typed arrays, or those the caller lends back for the purpose
-//! (`into`), never views of wasm memory (those go stale when memory grows). Every failure is a `Result`: a panic would abort the module instance and break every
-//! later call on the page.
+//! (`into`), never views of wasm memory (those go stale when memory grows). Every failure is a
+//! `Result`: a panic would abort the module instance and break every later call on the page.
 //!
 //! ```js
 //! import init, { subdivide } from 'subsurf';
@@ -937,7 +937,7 @@ impl Lent {
             return Ok(Lent { arrays });
         }
         if !into.is_object() || is_array(into) {
-            return Err(Error::Unsupported(format!(
+            return Err(Error::InvalidOption(format!(
                 "into must be a result of an earlier subdivide call, to reuse its arrays, or \
                  undefined; got {}",
                 describe(into)
@@ -945,7 +945,7 @@ impl Lent {
         }
         for (slot, (key, kind)) in arrays.iter_mut().zip(RESULT_FIELDS) {
             let value = Reflect::get(into, &JsValue::from_str(key)).map_err(|e| {
-                Error::Unsupported(format!("reading into.{key} threw {}", describe(&e)))
+                Error::InvalidOption(format!("reading into.{key} threw {}", describe(&e)))
             })?;
             if typed_array_kind(&value).as_deref() == Some(kind) {
                 *slot = value;
@@ -955,8 +955,8 @@ impl Lent {
     }
 
     /// Field `i`'s array when it has `len` elements, is not a view of wasm memory (which the
-    /// writes would corrupt) and was not handed out already (one array lent for two fields);
-    /// else a fresh array.
+    /// writes would corrupt) and is not lent for a later field too (so an array lent for two
+    /// fields serves one at most); else a fresh array. Called once per field, in order.
     fn take(&mut self, i: usize, len: usize, intrinsics: &Intrinsics) -> JsResult<JsValue> {
         let lent = std::mem::take(&mut self.arrays[i]);
         if !lent.is_undefined() {
