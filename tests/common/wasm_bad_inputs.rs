@@ -137,6 +137,17 @@ fn run_case(case: &Case, fragments: &[&str]) {
     if case.stage == Stage::Mesh {
         expect_error(name, "writeObj", write_obj(&mesh).map(JsValue::from), fragments);
     }
+    // The same refusal through BaseMesh: its constructor for a bad mesh, else its subdivide.
+    match (case.stage, subsurf::wasm::BaseMesh::new(&mesh)) {
+        (Stage::Mesh, built) => {
+            expect_error(name, "new BaseMesh", built.map(|b| b.num_faces().into()), fragments)
+        }
+        (_, Ok(base)) => {
+            let result = base.subdivide(&js_options(case), &JsValue::UNDEFINED);
+            expect_error(name, "BaseMesh.subdivide", result, fragments)
+        }
+        (_, Err(e)) => panic!("{name}: new BaseMesh refused a valid mesh: {}", message(e)),
+    }
     assert_eq!(snapshot(&mesh), before, "{name}: the failed call changed the caller's arrays");
 }
 
