@@ -2,8 +2,11 @@
 //   node tests/js/pkg_smoke.mjs
 // Installs pkg/'s `files` into a temporary node_modules/subsurf, imports it the three ways a
 // user would (`subsurf/node`, `initSync`, `await init`), subdivides a cube and checks counts,
-// positions, errors and the TypeScript declarations. Exits non-zero on the first failure.
+// positions, errors, BaseMesh and `into` through the generated glue, and the TypeScript
+// declarations: their text, and `tsc` (package.json's pinned version) on a consumer file,
+// tests/js/types_check.ts. Exits non-zero on the first failure.
 import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import { cpSync, mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
@@ -168,5 +171,22 @@ check('subsurf.d.ts', () => {
   assert.ok(node.schemeNames().includes('catmull-clark') && node.boundaryRules()[0] === 'edge-and-corner');
   assert.ok(readFileSync(join(installed, 'node.d.ts'), 'utf8').includes("export * from './subsurf.js';"));
 });
+
+// ---- the declarations compile, as a TypeScript project would use them
+// Two configurations: the library files checked too (skipLibCheck off), which needs the
+// `esnext.disposable` lib because wasm-bindgen's classes declare [Symbol.dispose] (TypeScript
+// 5.2 or later); and the `tsc --init` default, skipLibCheck on, with an older lib.
+writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
+cpSync(join(root, 'tests', 'js', 'types_check.ts'), join(scratch, 'types_check.ts'));
+for (const [skipLibCheck, lib] of [[false, ['es2022', 'esnext.disposable', 'dom']], [true, ['es2022', 'dom']]]) {
+  check(`tsc on tests/js/types_check.ts, skipLibCheck ${skipLibCheck}`, () => {
+    const compilerOptions = {
+      strict: true, noEmit: true, skipLibCheck, target: 'es2022', module: 'nodenext', moduleResolution: 'nodenext', lib, types: [],
+    };
+    writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['types_check.ts'] }));
+    const tsc = spawnSync(join(root, 'node_modules', '.bin', 'tsc'), ['-p', scratch], { encoding: 'utf8' });
+    assert.equal(tsc.status, 0, `tsc failed:\n${tsc.stdout}${tsc.stderr}`);
+  });
+}
 
 console.log(`pkg_smoke: ok (${checks} checks; subsurf ${pkg.version}, subsurf_bg.wasm ${bytes.length} bytes)`);

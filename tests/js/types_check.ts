@@ -1,0 +1,40 @@
+// A TypeScript consumer of the installed package: tests/js/pkg_smoke.mjs copies it next to
+// node_modules/subsurf and type-checks it with the pinned `tsc` (strict, no skipLibCheck), so
+// the shipped declarations compile and say what the API accepts. Each `@ts-expect-error` marks a
+// misuse the types must refuse: tsc fails if the line after it type-checks.
+import init, { BaseMesh, readObj, subdivide, type SubdivideResult } from 'subsurf';
+import { subdivide as subdivideInNode } from 'subsurf/node';
+
+await init();
+
+const cube = {
+  positions: new Float32Array(24),
+  indices: new Uint32Array(24),
+  faceSizes: new Uint32Array([4, 4, 4, 4, 4, 4]),
+};
+const out: SubdivideResult = subdivide(cube, { scheme: 'catmull-clark', levels: 2, boundary: 'edge-only' });
+const triangles: Uint32Array = out.triangles;
+const again: SubdivideResult = subdivide(cube, { levels: 2 }, out);
+subdivideInNode(cube, { scheme: ['doo-sabin', 'loop'], creases: { edges: new Uint32Array([0, 1]), sharpness: new Float32Array([2]) } });
+
+const base = new BaseMesh(cube);
+const vertices: number = base.numVertices + base.numFaces;
+base.setPositions(new Float32Array(3 * vertices));
+const moved: SubdivideResult = base.subdivide({ levels: 1 }, again);
+base.free();
+
+const obj = readObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
+subdivide(obj, { ...obj.tags, levels: 1 });
+
+// @ts-expect-error: an unknown scheme name
+subdivide(cube, { scheme: 'butterfly' });
+// @ts-expect-error: positions must be a Float32Array
+subdivide({ positions: [0, 0, 0], indices: new Uint32Array(3) });
+// @ts-expect-error: a misspelt option
+subdivide(cube, { level: 2 });
+// @ts-expect-error: setPositions takes a Float32Array
+base.setPositions([0, 0, 0]);
+// @ts-expect-error: numFaces is read-only
+base.numFaces = 3;
+
+export const used = [triangles, moved];
