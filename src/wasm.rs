@@ -223,6 +223,17 @@ impl BaseMesh {
         refined_object(&refined, lent)
     }
 
+    /// `predictCounts(mesh, options)` for this mesh: the sizes after each level, without
+    /// refining (for the highest level that fits a budget).
+    #[wasm_bindgen(js_name = predictCounts, unchecked_return_type = "PredictedCounts")]
+    pub fn predict_counts(
+        &self,
+        #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
+    ) -> JsResult<JsValue> {
+        let (options, _) = read_options(options).map_err(js_error)?;
+        predicted_counts_object(&self.mesh, &options)
+    }
+
     /// Moves the vertices: x, y, z per vertex, as many vertices as the mesh has, all finite.
     /// The faces stay. Throws, and leaves the mesh as it was, otherwise.
     #[wasm_bindgen(js_name = setPositions)]
@@ -379,12 +390,17 @@ pub fn predict_counts(
     let (options, _) = read_options(options).map_err(js_error)?;
     let mesh = read_mesh(mesh).map_err(js_error)?;
     let base = HalfEdgeMesh::from_poly(&mesh).map_err(js_error)?;
+    predicted_counts_object(&base, &options)
+}
+
+/// [`predict_counts`]'s result for a built mesh.
+fn predicted_counts_object(base: &HalfEdgeMesh, options: &Options) -> JsResult<JsValue> {
     let levels = options.levels();
     let (mut vertices, mut faces) =
         (Vec::with_capacity(levels + 1), Vec::with_capacity(levels + 1));
     for level in 0..=levels {
         let prefix = Options { schemes: options.schemes[..level].to_vec(), ..options.clone() };
-        let (v, f) = scheme::predict_counts(&base, &prefix);
+        let (v, f) = scheme::predict_counts(base, &prefix);
         vertices.push(v as f64);
         faces.push(f as f64);
     }

@@ -213,3 +213,28 @@ fn hostile_into_objects_give_errors_or_fresh_arrays() {
         assert_eq!(reused, expect_reused.iter().collect::<Vec<_>>(), "{body}");
     }
 }
+
+/// `predictCounts` and `BaseMesh.predictCounts` give the sizes after 0..levels levels. For
+/// Catmull-Clark on the cube they follow V' = V + E + F, F' = 4F, E' = 2E + 4F (8/12/6 to
+/// 26/48/24 to 98/192/96 to 386/768/384; level 1 is seed 003's cube), and they are the sizes
+/// `subdivide` returns.
+#[wasm_bindgen_test]
+fn predicted_counts_with_and_without_base_mesh() {
+    use subsurf::wasm::predict_counts;
+    let f64s = |object: &JsValue, key: &str| -> Vec<f64> {
+        field(object, key).dyn_into::<js_sys::Float64Array>().expect(key).to_vec()
+    };
+    let base = BaseMesh::new(&cube()).unwrap_or_else(|e| panic!("{}", message(e)));
+    let from_mesh = ok(predict_counts(&cube(), &levels(3.0)));
+    let from_base = ok(base.predict_counts(&levels(3.0)));
+    for predicted in [&from_mesh, &from_base] {
+        assert_eq!(f64s(predicted, "vertices"), [8.0, 26.0, 98.0, 386.0]);
+        assert_eq!(f64s(predicted, "faces"), [6.0, 24.0, 96.0, 384.0]);
+    }
+    for level in 1..=3 {
+        let out = ok(base.subdivide(&levels(level as f64), &JsValue::UNDEFINED));
+        assert_eq!(f32s(&out, "positions").len() as f64, 3.0 * f64s(&from_base, "vertices")[level]);
+        assert_eq!(u32s(&out, "faceSizes").len() as f64, f64s(&from_base, "faces")[level]);
+    }
+    assert_mentions(&thrown(base.predict_counts(&levels_typo())), &["'levels'"]);
+}

@@ -19,6 +19,7 @@ subdivideInNode(cube, { scheme: ['doo-sabin', 'loop'], creases: { edges: new Uin
 
 const base = new BaseMesh(cube);
 const vertices: number = base.numVertices + base.numFaces;
+const faces: Float64Array = base.predictCounts({ levels: 3 }).faces;
 base.setPositions(new Float32Array(3 * vertices));
 const moved: SubdivideResult = base.subdivide({ levels: 1 }, again);
 base.free();
@@ -37,4 +38,4 @@ base.setPositions([0, 0, 0]);
 // @ts-expect-error: numFaces is read-only
 base.numFaces = 3;
 
-export const used = [triangles, moved];
+export const used = [triangles, moved, faces];
