@@ -439,12 +439,11 @@ fn check_scheme(
     level: usize,
 ) -> Result<()> {
     let at = |what: String| Error::Unsupported(format!("level {}: {what}", level + 1));
-    if scheme.triangles_only() {
-        if let Some(c) = mesh
-            .cell_indices()
-            .find(|&c| mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize] != 3)
-        {
-            let n = mesh.cell_offsets[c as usize + 1] - mesh.cell_offsets[c as usize];
+    // An all-triangle mesh says so (`cell_size`); only others are scanned for the culprit.
+    if scheme.triangles_only() && mesh.cell_size != 3 {
+        let size = |c: u32| mesh.cell_range(c as usize).len();
+        if let Some(c) = mesh.cell_indices().find(|&c| size(c) != 3) {
+            let n = size(c);
             let when = if level == 0 { "the input" } else { "the previous level's result" };
             return Err(at(format!(
                 "{scheme} is defined on triangles only, but face {c} of {when} has {n} vertices; use 'quad-triangle' for meshes with quads, or triangulate first"

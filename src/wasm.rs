@@ -831,10 +831,14 @@ fn copy_in<T: Default + Clone>(
     let mut out = zeroed(length / per_item, length, field)?;
     // The view is made after the allocation, which may grow (and so detach) the memory's
     // buffer. JS writes `out` through it as `copy_to` would; nothing else holds `out`.
-    let buffer = wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer();
-    let target = view(&buffer, out.as_mut_ptr() as u32, length);
+    let target = view(&memory_buffer(), out.as_mut_ptr() as u32, length);
     intrinsics().and_then(|i| i.set.call1(&target, source)).map_err(|e| copy_threw(field, e))?;
     Ok(out)
+}
+
+/// The module's memory as it is now (growing it replaces the buffer).
+fn memory_buffer() -> JsValue {
+    wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer()
 }
 
 fn float32_view(buffer: &JsValue, offset: u32, len: u32) -> JsValue {
@@ -978,9 +982,7 @@ impl Lent {
         if !lent.is_undefined() {
             let fits =
                 intrinsics.length.call0(&lent).ok().and_then(|n| n.as_f64()) == Some(len as f64);
-            let ours = intrinsics.buffer.call0(&lent).is_ok_and(|b| {
-                b == wasm_bindgen::memory().unchecked_into::<js_sys::WebAssembly::Memory>().buffer()
-            });
+            let ours = intrinsics.buffer.call0(&lent).is_ok_and(|b| b == memory_buffer());
             let again = self.arrays.iter().any(|other| Object::is(other, &lent));
             if fits && !ours && !again {
                 return Ok(lent);

@@ -19,7 +19,7 @@ pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64, tris
 /// One level: the child mesh as flat arrays, with positions from `rules`.
 pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
     let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
-    let size = |c: usize| (mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]) as usize;
+    let size = |c: usize| mesh.cell_range(c).len();
     // Index of each cell's centroid among the centroids (u32::MAX for triangles).
     let mut centroid_of = vec![u32::MAX; nf];
     let mut centroids = 0u32;
@@ -57,8 +57,8 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
     let mut indices = Vec::with_capacity(num_indices);
     let mut face_sizes = Vec::with_capacity(num_faces);
     for (c, &k) in centroid_of.iter().enumerate() {
-        let start = mesh.cell_offsets[c] as usize;
-        let n = size(c);
+        let cell = mesh.cell_range(c);
+        let (start, n) = (cell.start, cell.len());
         let edge_point = |i: usize| edge_base + mesh.he_edge[start + (i % n)];
         let corner = |i: usize| mesh.he_from[start + i];
         if k == u32::MAX {
