@@ -21,6 +21,8 @@
 pub mod error;
 pub mod io;
 pub mod mesh;
+pub mod options;
+pub mod primvar;
 pub mod refine;
 pub mod rules;
 pub mod scheme;
@@ -32,5 +34,6 @@ pub mod wasm;
 
 pub use error::{Error, Result};
 pub use mesh::{HalfEdgeMesh, PolyMesh};
-pub use scheme::{subdivide, subdivide_with_tags, Boundary, Options, Scheme};
-pub use tags::{Corner, Crease, CreaseMethod, Tags};
+pub use options::{Boundary, CreaseMethod};
+pub use scheme::{subdivide, subdivide_with_tags, Options, Scheme};
+pub use tags::{Corner, Crease, Tags};

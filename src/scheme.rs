@@ -2,6 +2,8 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{chunked, HalfEdgeMesh, PolyMesh};
+use crate::options::parse_name;
+pub use crate::options::Boundary;
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{pqq, ptq, quad_tri, sqrt3};
 use crate::rules::Sqrt3;
@@ -10,14 +12,12 @@ use crate::rules::{
     QuadSplitRules, QuadTriangle, TriSplitRules,
 };
 use crate::tags::Tags;
-use serde::Deserialize;
 use std::borrow::Cow;
 use std::fmt;
 use std::str::FromStr;
 
 /// A subdivision scheme.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Scheme {
     /// Catmull-Clark: any polygons in, quads out.
     #[default]
@@ -78,63 +78,6 @@ impl Scheme {
     }
 }
 
-/// What happens on boundary edges and vertices.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Boundary {
-    /// Boundary edges are sharp creases and vertices with one face stay put, as OpenSubdiv's
-    /// `VTX_BOUNDARY_EDGE_AND_CORNER`.
-    #[default]
-    EdgeAndCorner,
-    /// Boundary edges are sharp creases, every boundary vertex follows the crease rule
-    /// `(a + 6v + b) / 8`, as OpenSubdiv's `VTX_BOUNDARY_EDGE_ONLY` and CGAL.
-    EdgeOnly,
-    /// Boundary vertices keep their position; boundary edge points are midpoints (seed 000).
-    Fixed,
-    /// A boundary vertex moves to the mean of itself and its boundary edges' midpoints (seed 003).
-    Average,
-    /// No boundary interpolation. Catmull-Clark and Loop do as OpenSubdiv's `VTX_BOUNDARY_NONE`
-    /// (OBJ `interpolateboundary 0`): the faces at a vertex with a boundary edge that is not
-    /// tagged infinitely sharp become holes, so they and their descendants are left out of the
-    /// result (their vertices stay, placed as under `EdgeOnly`). Doo-Sabin leaves out the faces of boundary edges and vertices, so the
-    /// surface retracts from the boundary, as CGAL's Doo-Sabin does. Bilinear and midpoint alone
-    /// ignore it (before a Catmull-Clark or Loop level of a list they carry its holes);
-    /// Quad/Triangle and √3 refuse it.
-    None,
-}
-
-impl Boundary {
-    pub const ALL: &'static [Boundary] = &[
-        Boundary::EdgeAndCorner,
-        Boundary::EdgeOnly,
-        Boundary::Fixed,
-        Boundary::Average,
-        Boundary::None,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Boundary::EdgeAndCorner => "edge-and-corner",
-            Boundary::EdgeOnly => "edge-only",
-            Boundary::Fixed => "fixed",
-            Boundary::Average => "average",
-            Boundary::None => "none",
-        }
-    }
-}
-
-fn parse_name<T: Copy>(
-    what: &str,
-    value: &str,
-    all: &[T],
-    name: fn(T) -> &'static str,
-) -> Result<T> {
-    all.iter().copied().find(|&t| name(t) == value).ok_or_else(|| {
-        let allowed: Vec<_> = all.iter().map(|&t| format!("'{}'", name(t))).collect();
-        Error::InvalidOption(format!("unknown {what} '{value}'; use one of {}", allowed.join(", ")))
-    })
-}
-
 impl FromStr for Scheme {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
@@ -142,20 +85,7 @@ impl FromStr for Scheme {
     }
 }
 
-impl FromStr for Boundary {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        parse_name("boundary", s, Boundary::ALL, Boundary::name)
-    }
-}
-
 impl fmt::Display for Scheme {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl fmt::Display for Boundary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }

@@ -10,70 +10,24 @@
 //! refuse non-trivial tags.
 
 use crate::error::{Error, Result};
-use serde::Deserialize;
-use std::fmt;
-use std::str::FromStr;
+pub use crate::options::CreaseMethod;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (OpenSubdiv's
 /// `Sdc::Crease::SHARPNESS_INFINITE`).
 pub const SHARPNESS_INFINITE: f32 = 10.0;
 
 /// A sharp edge: the two vertices of an existing edge (either order) and its sharpness.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crease {
     pub vertices: [u32; 2],
     pub sharpness: f32,
 }
 
 /// A sharp vertex and its sharpness.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Corner {
     pub vertex: u32,
     pub sharpness: f32,
-}
-
-/// How semi-sharp creases lose sharpness from one level to the next.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CreaseMethod {
-    /// Every level subtracts 1 (OpenSubdiv `CREASE_UNIFORM`; OBJ `creasemethod normal`).
-    #[default]
-    Uniform,
-    /// Each half of an edge takes 3/4 of its own sharpness and 1/4 of the mean of the other
-    /// semi-sharp edges at its end vertex, then subtracts 1, so a crease of varying sharpness
-    /// decays smoothly along its length (OpenSubdiv `CREASE_CHAIKIN`; OBJ `creasemethod chaikin`).
-    Chaikin,
-}
-
-impl CreaseMethod {
-    pub const ALL: &'static [CreaseMethod] = &[CreaseMethod::Uniform, CreaseMethod::Chaikin];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            CreaseMethod::Uniform => "uniform",
-            CreaseMethod::Chaikin => "chaikin",
-        }
-    }
-}
-
-impl FromStr for CreaseMethod {
-    type Err = Error;
-    /// `uniform` (or OpenSubdiv's `normal`) and `chaikin`.
-    fn from_str(s: &str) -> Result<Self> {
-        match s {
-            "uniform" | "normal" => Ok(CreaseMethod::Uniform),
-            "chaikin" => Ok(CreaseMethod::Chaikin),
-            other => Err(Error::InvalidOption(format!(
-                "unknown crease method '{other}'; use 'uniform' (OpenSubdiv's 'normal') or 'chaikin'"
-            ))),
-        }
-    }
-}
-
-impl fmt::Display for CreaseMethod {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
 }
 
 /// The tags of a base mesh. The default has none: every edge and vertex smooth, no holes.
@@ -82,8 +36,7 @@ impl fmt::Display for CreaseMethod {
 /// `0..V`, faces `0..F` in input order. An edge or vertex named twice takes the last value, as in
 /// OpenSubdiv. Invalid tags (a vertex pair that is not an edge, an index out of range, a
 /// negative or NaN sharpness) are an [`Error::InvalidTag`] naming the tag.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(default, rename_all = "camelCase")]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tags {
     /// Sharp edges.
     pub creases: Vec<Crease>,

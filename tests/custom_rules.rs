@@ -2,21 +2,16 @@
 //! scheme (Dyn, Levin & Gregory 1990; Zorin, Schröder & Sweldens 1996), an interpolating scheme,
 //! on the primal triangle split. It uses only the public mesh API.
 
-use glam::Vec3;
 use subsurf::mesh::{HalfEdgeMesh, HalfEdgeRef, PolyMesh};
 use subsurf::refine::ptq;
-use subsurf::rules::{edge_midpoint, TriSplitRules};
+use subsurf::rules::{edge_midpoint, Stencil, TriSplitRules, Weights};
 use subsurf::shapes::{grid, icosahedron, triangulate_quads};
 
 struct Butterfly;
 
-fn point(mesh: &HalfEdgeMesh, v: u32) -> Vec3 {
-    Vec3::from_array(mesh.vertex(v).map(|v| v.position()).unwrap_or_default())
-}
-
-/// The vertex across the edge of `h` from `h`'s own triangle.
-fn opposite(h: HalfEdgeRef<'_>) -> u32 {
-    h.next_in_cell().to_vertex_index()
+/// The corner across the edge of `h` from `h`'s own triangle (see [`Weights::corner`]).
+fn opposite(h: HalfEdgeRef<'_>) -> HalfEdgeRef<'_> {
+    h.prev_in_cell()
 }
 
 /// Interior valence, or `None` on the boundary.
@@ -26,8 +21,9 @@ fn interior_valence(mesh: &HalfEdgeMesh, v: u32) -> Option<usize> {
 }
 
 /// Zorin's stencil around an extraordinary vertex `h.from` of valence `k`, for the edge of `h`:
-/// `3/4` on the vertex and `s_j` on its neighbours, `j` counted from the edge's other end.
-fn extraordinary(mesh: &HalfEdgeMesh, h: HalfEdgeRef<'_>, k: usize) -> Vec3 {
+/// `3/4` on the vertex and `s_j` on its neighbours, `j` counted from the edge's other end;
+/// `scale` times all of it.
+fn extraordinary(h: HalfEdgeRef<'_>, k: usize, scale: f32, w: &mut impl Weights) {
     let s = |j: usize| -> f32 {
         match k {
             3 => [5.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0][j],
@@ -38,47 +34,50 @@ fn extraordinary(mesh: &HalfEdgeMesh, h: HalfEdgeRef<'_>, k: usize) -> Vec3 {
             }
         }
     };
-    let mut sum = point(mesh, h.from_vertex_index()) * 0.75;
+    w.corner(h.index(), 0.75 * scale);
     let mut g = h;
     for j in 0..k {
-        sum += point(mesh, g.to_vertex_index()) * s(j);
+        // The neighbour is the to-vertex of g: the corner where g's successor starts.
+        w.corner(g.next_in_cell().index(), s(j) * scale);
         // The next neighbour clockwise: across the previous edge of g's triangle.
         g = g.prev_around_from_vertex();
     }
-    sum
 }
 
 impl TriSplitRules for Butterfly {
-    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         let Some(&[h0, h1]) = mesh.edge_half_edges(edge) else {
-            return edge_midpoint(mesh, edge);
+            return edge_midpoint(mesh, edge, w);
         };
         let (Some(h0), Some(h1)) = (mesh.half_edge(h0), mesh.half_edge(h1)) else {
-            return edge_midpoint(mesh, edge);
+            return edge_midpoint(mesh, edge, w);
         };
         let (a, b) = (h0.from_vertex_index(), h0.to_vertex_index());
         match (interior_valence(mesh, a), interior_valence(mesh, b)) {
             (Some(6), Some(6)) => {
-                let wing = |g: HalfEdgeRef<'_>| point(mesh, opposite(g.next_around_edge()));
-                (point(mesh, a) + point(mesh, b)) * 0.5
-                    + (point(mesh, opposite(h0)) + point(mesh, opposite(h1))) * 0.125
-                    - (wing(h0.next_in_cell())
-                        + wing(h0.prev_in_cell())
-                        + wing(h1.next_in_cell())
-                        + wing(h1.prev_in_cell()))
-                        * 0.0625
+                let wing = |g: HalfEdgeRef<'_>| opposite(g.next_around_edge()).index();
+                w.vertex(a, 0.5);
+                w.vertex(b, 0.5);
+                w.corner(opposite(h0).index(), 0.125);
+                w.corner(opposite(h1).index(), 0.125);
+                for g in
+                    [h0.next_in_cell(), h0.prev_in_cell(), h1.next_in_cell(), h1.prev_in_cell()]
+                {
+                    w.corner(wing(g), -0.0625);
+                }
             }
-            (Some(ka), Some(6)) => extraordinary(mesh, h0, ka),
-            (Some(6), Some(kb)) => extraordinary(mesh, h1, kb),
+            (Some(ka), Some(6)) => extraordinary(h0, ka, 1.0, w),
+            (Some(6), Some(kb)) => extraordinary(h1, kb, 1.0, w),
             (Some(ka), Some(kb)) => {
-                (extraordinary(mesh, h0, ka) + extraordinary(mesh, h1, kb)) * 0.5
+                extraordinary(h0, ka, 0.5, w);
+                extraordinary(h1, kb, 0.5, w);
             }
-            _ => edge_midpoint(mesh, edge),
+            _ => edge_midpoint(mesh, edge, w),
         }
     }
 
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
-        point(mesh, vertex)
+    fn vertex_point(&self, _: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        w.vertex(vertex, 1.0)
     }
 }
 
@@ -140,4 +139,18 @@ fn butterfly_reproduces_cubics_on_a_regular_grid() {
         checked += 1;
     }
     assert!(checked > 50, "{checked}");
+}
+
+/// Written as weights, every butterfly stencil is affine: its weights sum to 1, including
+/// Zorin's negative ones around extraordinary vertices.
+#[test]
+fn butterfly_stencils_are_affine() {
+    for mesh in [icosahedron(), triangulate_quads(&grid(5, 4))] {
+        let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        for e in 0..he.num_edges() as u32 {
+            let mut stencil = Stencil::default();
+            Butterfly.edge_point(&he, e, &mut stencil);
+            assert!((stencil.total() - 1.0).abs() < 1e-6, "edge {e}: {stencil:?}");
+        }
+    }
 }

@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use subsurf::refine::sqrt3;
-use subsurf::rules::{sqrt3_alpha, Sqrt3, Sqrt3Rules};
+use subsurf::rules::{sqrt3_alpha, Sqrt3, Sqrt3Rules, Stencil};
 use subsurf::scheme::predict_counts;
 use subsurf::shapes::{
     cube, grid, grid_with_hole, icosahedron, torus_triangles, triangulate_quads,
@@ -127,30 +127,37 @@ fn weights() {
     assert!((sqrt3_alpha(6) - 1.0 / 3.0).abs() < 1e-7);
     assert!((sqrt3_alpha(3) - 5.0 / 9.0).abs() < 1e-7);
     assert!((sqrt3_alpha(4) - 4.0 / 9.0).abs() < 1e-7);
-    let c = [0.25f32, -3.0, 7.5];
     let mut meshes = closed_meshes();
     meshes.extend(open_meshes());
     for (name, mesh) in meshes {
-        let flat = PolyMesh { positions: c.repeat(mesh.num_vertices()), ..mesh.clone() };
-        let he = HalfEdgeMesh::from_poly(&flat).unwrap();
+        let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
         for boundary in [Boundary::EdgeAndCorner, Boundary::Fixed] {
             let rules = Sqrt3 { boundary };
-            let mut points: Vec<glam::Vec3> = Vec::new();
+            let mut stencils: Vec<Stencil> = Vec::new();
+            let mut record = |rule: &dyn Fn(&mut Stencil)| {
+                let mut s = Stencil::default();
+                rule(&mut s);
+                stencils.push(s);
+            };
             for v in he.vertex_indices() {
-                points.push(rules.vertex_point(&he, v, false));
-                points.push(rules.vertex_point(&he, v, true));
+                record(&|w| rules.vertex_point(&he, v, false, w));
+                record(&|w| rules.vertex_point(&he, v, true, w));
             }
             for f in he.cell_indices() {
-                points.push(rules.face_point(&he, f));
+                record(&|w| rules.face_point(&he, f, w));
             }
             for h in he.half_edge_indices() {
                 if he.half_edge(h).unwrap().is_boundary() {
-                    points.extend(rules.boundary_points(&he, h));
+                    record(&|w| rules.boundary_point(&he, h, 0, w));
+                    record(&|w| rules.boundary_point(&he, h, 1, w));
                 }
             }
-            for p in points {
-                let d = distance(p.to_array(), c);
-                assert!(d < 1e-5, "{name} {boundary}: a stencil moves a constant field by {d}");
+            for s in stencils {
+                let total = s.total();
+                assert!(
+                    (total - 1.0).abs() < 1e-6,
+                    "{name} {boundary}: a stencil's weights sum to {total}: {s:?}"
+                );
             }
         }
     }

@@ -7,7 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
-use crate::scheme::Boundary;
+use crate::options::Boundary;
 use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use std::collections::HashSet;
 use std::fmt::Write as _;

@@ -27,7 +27,8 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
-use crate::rules::{vec3, CornerRules};
+use crate::primvar::PointSum;
+use crate::rules::CornerRules;
 
 /// No such child element: no face for this edge, no vertex face for this corner.
 const NONE: u32 = u32::MAX;
@@ -245,14 +246,14 @@ fn child_points<R: CornerRules>(
     points: &mut [[f32; 3]],
 ) {
     let (corners, chaikin) = points.split_at_mut(mesh.num_half_edges());
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
     for (h, p) in corners.iter_mut().enumerate() {
-        *p = rules.corner_point(mesh, h as u32).to_array();
+        *p = sum.eval(|w| rules.corner_point(mesh, h as u32, w));
     }
     for (pair, &h) in chaikin.chunks_exact_mut(2).zip(&layout.boundary) {
-        let a = vec3(mesh.positions[mesh.he_from[h as usize] as usize]);
-        let b = vec3(mesh.positions[mesh.to_vertex(h) as usize]);
-        pair[0] = (a * 0.75 + b * 0.25).to_array();
-        pair[1] = (a * 0.25 + b * 0.75).to_array();
+        for (near, p) in pair.iter_mut().enumerate() {
+            *p = sum.eval(|w| rules.boundary_point(mesh, h, near, w));
+        }
     }
 }
 

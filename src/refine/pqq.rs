@@ -17,6 +17,7 @@
 //! entries of its own iteration.
 
 use crate::mesh::{quad_and_fan_chunks, HalfEdgeMesh};
+use crate::primvar::PointSum;
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, QuadSplitRules};
 
@@ -36,11 +37,14 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
 /// pass over the largest array.
 pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
     let (v, f, e) = (mesh.num_vertices() as u32, mesh.num_cells() as u32, mesh.num_edges() as u32);
-    let face_points: Vec<[f32; 3]> = (0..f).map(|c| rules.face_point(mesh, c).to_array()).collect();
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
+    let face_points: Vec<[f32; 3]> =
+        (0..f).map(|c| sum.eval(|w| rules.face_point(mesh, c, w))).collect();
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &face_points);
     let mut points = Vec::with_capacity(num_child_vertices(mesh));
-    points.extend((0..v).map(|i| rules.vertex_point(mesh, &face_points, i).to_array()));
+    points.extend((0..v).map(|i| sum.eval(|w| rules.vertex_point(mesh, i, w))));
     points.extend_from_slice(&face_points);
-    points.extend((0..e).map(|i| rules.edge_point(mesh, &face_points, i).to_array()));
+    points.extend((0..e).map(|i| sum.eval(|w| rules.edge_point(mesh, i, w))));
     points
 }
 

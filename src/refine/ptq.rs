@@ -15,6 +15,7 @@
 //! non-manifold inputs).
 
 use crate::mesh::HalfEdgeMesh;
+use crate::primvar::PointSum;
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, TriSplitRules};
 
@@ -32,8 +33,11 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
 /// and overwritten.
 pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
     let (v, e) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
-    let vertex_points = (0..v).map(|i| rules.vertex_point(mesh, i).to_array());
-    vertex_points.chain((0..e).map(|i| rules.edge_point(mesh, i).to_array())).collect()
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
+    let mut points = Vec::with_capacity(num_child_vertices(mesh));
+    points.extend((0..v).map(|i| sum.eval(|w| rules.vertex_point(mesh, i, w))));
+    points.extend((0..e).map(|i| sum.eval(|w| rules.edge_point(mesh, i, w))));
+    points
 }
 
 /// The child triangles' vertex indices, 12 per parent triangle. The mesh must be all triangles.

@@ -8,6 +8,7 @@
 
 use super::ptq;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::primvar::PointSum;
 use crate::rules::MixedSplitRules;
 
 /// Child `[vertices, faces]` of one level, from the parent counts and the number of triangles
@@ -35,15 +36,17 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
     }
     let edge_base = (nv as u32) + centroids;
     // Face points of every cell first (the rules read them), then the child positions.
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
     let cell_points: Vec<[f32; 3]> =
-        (0..nf as u32).map(|c| rules.face_point(mesh, c).to_array()).collect();
+        (0..nf as u32).map(|c| sum.eval(|w| rules.face_point(mesh, c, w))).collect();
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &cell_points);
     let mut positions = vec![0.0f32; 3 * (nv + centroids as usize + ne)];
     {
         let points = positions.as_chunks_mut::<3>().0;
         let (old, rest) = points.split_at_mut(nv);
         let (faces, edges) = rest.split_at_mut(centroids as usize);
         for (v, p) in old.iter_mut().enumerate() {
-            *p = rules.vertex_point(mesh, &cell_points, v as u32).to_array();
+            *p = sum.eval(|w| rules.vertex_point(mesh, v as u32, w));
         }
         for (c, &k) in centroid_of.iter().enumerate() {
             if k != u32::MAX {
@@ -51,7 +54,7 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
             }
         }
         for (e, p) in edges.iter_mut().enumerate() {
-            *p = rules.edge_point(mesh, &cell_points, e as u32).to_array();
+            *p = sum.eval(|w| rules.edge_point(mesh, e as u32, w));
         }
     }
     let mut indices = Vec::with_capacity(num_indices);

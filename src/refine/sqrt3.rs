@@ -35,6 +35,7 @@
 use super::dqq;
 use crate::error::Result;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::primvar::PointSum;
 use crate::rules::Sqrt3Rules;
 
 const NONE: u32 = u32::MAX;
@@ -111,8 +112,9 @@ fn child_points<R: Sqrt3Rules>(
     points: &mut [[f32; 3]],
 ) {
     let (old, new) = points.split_at_mut(mesh.num_vertices());
+    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
     for (v, p) in old.iter_mut().enumerate() {
-        *p = rules.vertex_point(mesh, v as u32, refine_boundary).to_array();
+        *p = sum.eval(|w| rules.vertex_point(mesh, v as u32, refine_boundary, w));
     }
     // Each cell writes its own one or two slots.
     let base = mesh.num_vertices();
@@ -120,12 +122,12 @@ fn child_points<R: Sqrt3Rules>(
         let at = slot as usize - base;
         if b == NONE {
             if let Some(p) = new.get_mut(at) {
-                *p = rules.face_point(mesh, c as u32).to_array();
+                *p = sum.eval(|w| rules.face_point(mesh, c as u32, w));
             }
         } else if let Some(pair) = new.get_mut(at..at + 2) {
-            let [near_from, near_to] = rules.boundary_points(mesh, b);
-            pair[0] = near_from.to_array();
-            pair[1] = near_to.to_array();
+            for (near, p) in pair.iter_mut().enumerate() {
+                *p = sum.eval(|w| rules.boundary_point(mesh, b, near, w));
+            }
         }
     }
 }

@@ -20,11 +20,11 @@
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
 use super::{
-    boundary_vertex_rule, centroid, edge_midpoint, ring, smooth_edge, vec3, QuadSplitRules,
+    boundary_vertex_rule, centroid, edge_midpoint, one_ring, ring, smooth_edge, QuadSplitRules,
+    Weights,
 };
 use crate::mesh::HalfEdgeMesh;
-use crate::scheme::Boundary;
-use glam::Vec3;
+use crate::options::Boundary;
 
 /// Catmull-Clark subdivision rules.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -32,37 +32,49 @@ pub struct CatmullClark {
     pub boundary: Boundary,
 }
 
+/// The smooth vertex mask of valence `n`: weights on the vertex, on each neighbour and on each
+/// face point.
+#[inline]
+fn smooth_vertex_mask(n: u32) -> [f32; 3] {
+    let n = n as f32;
+    let k = 1.0 / (n * n);
+    [(n - 2.0) / n, k, k]
+}
+
 impl QuadSplitRules for CatmullClark {
     #[inline]
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-        centroid(mesh, cell)
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
+        centroid(mesh, cell, w)
     }
 
     #[inline]
-    fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3 {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         match smooth_edge(mesh, edge) {
             Some([h0, h1]) => {
-                let f0 = vec3(face_points[mesh.cell_of(h0) as usize]);
-                let f1 = vec3(face_points[mesh.cell_of(h1) as usize]);
-                edge_midpoint(mesh, edge) * 0.5 + (f0 + f1) * 0.25
+                let [a, b] = mesh.edge_vertices[edge as usize];
+                w.vertex(a, 0.25);
+                w.vertex(b, 0.25);
+                w.face_point(mesh.cell_of(h0), 0.25);
+                w.face_point(mesh.cell_of(h1), 0.25);
             }
-            None => edge_midpoint(mesh, edge),
+            None => edge_midpoint(mesh, edge, w),
         }
     }
 
     #[inline]
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
-        let v = vec3(mesh.positions[vertex as usize]);
-        let mut faces = Vec3::ZERO;
-        let ring = ring(mesh, vertex, |h| faces += vec3(face_points[mesh.cell_of(h) as usize]));
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        let ring = ring(mesh, vertex);
         if ring.faces == 0 {
-            return v;
+            return w.vertex(vertex, 1.0);
         }
-        if let Some(p) = boundary_vertex_rule(self.boundary, v, &ring) {
-            return p;
+        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
+            return;
         }
-        let n = ring.faces as f32;
-        v * ((n - 2.0) / n) + (ring.neighbours + faces) / (n * n)
+        let [center, edge, face] = smooth_vertex_mask(ring.faces);
+        // The small weights first: summed before the large one, their rounding stays small
+        // at high valence (catmark_pole360).
+        one_ring(mesh, vertex, &ring, edge, face, w);
+        w.vertex(vertex, center);
     }
 }
 
@@ -83,20 +95,17 @@ pub struct CreasedCatmullClark<'a> {
 
 impl QuadSplitRules for CreasedCatmullClark<'_> {
     #[inline]
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-        centroid(mesh, cell)
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
+        centroid(mesh, cell, w)
     }
 
     #[inline]
-    fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3 {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         // Boundary and non-manifold edges are infinitely sharp: the midpoint.
         let Some([h0, h1]) = sharp_or_smooth(mesh, self.tags, edge) else {
-            return edge_midpoint(mesh, edge);
+            return edge_midpoint(mesh, edge, w);
         };
         let (c0, c1) = (mesh.cell_of(h0), mesh.cell_of(h1));
-        let [a, b] = mesh.edge_vertices[edge as usize];
-        let ends = [vec3(mesh.positions[a as usize]), vec3(mesh.positions[b as usize])];
-        let faces = vec3(face_points[c0 as usize]) + vec3(face_points[c1 as usize]);
         let (vertex_weight, face_weight) = if self.tags.smooth_triangles {
             let size = |c: u32| mesh.cell_range(c as usize).len();
             let w = |c: u32| if size(c) == 3 { SMOOTH_TRIANGLE_EDGE_WEIGHT } else { 0.25 };
@@ -105,21 +114,15 @@ impl QuadSplitRules for CreasedCatmullClark<'_> {
         } else {
             (0.25, 0.25)
         };
-        creased_edge_point(mesh, self.tags, edge, ends, faces, vertex_weight, face_weight)
+        let face_weight = creased_edge_point(mesh, self.tags, edge, vertex_weight, face_weight, w);
+        if face_weight != 0.0 {
+            w.face_point(c0, face_weight);
+            w.face_point(c1, face_weight);
+        }
     }
 
     #[inline]
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
-        creased_vertex_point(
-            mesh,
-            self.tags,
-            self.boundary,
-            vertex,
-            |c| vec3(face_points[c as usize]),
-            |nb| {
-                let n = nb.faces as f32;
-                nb.v * ((n - 2.0) / n) + (nb.neighbours + nb.face_points) / (n * n)
-            },
-        )
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        creased_vertex_point(mesh, self.tags, self.boundary, vertex, smooth_vertex_mask, w)
     }
 }

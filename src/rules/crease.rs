@@ -51,12 +51,12 @@
 //!
 //! Child faces of a hole are holes.
 
-use super::{boundary_vertex_rule, fan, vec3};
+use super::{boundary_vertex_rule, fan, one_ring, Scaled, Weights};
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
-use crate::scheme::Boundary;
-use crate::tags::{CreaseMethod, Tags, SHARPNESS_INFINITE};
-use glam::Vec3;
+use crate::options::Boundary;
+use crate::options::CreaseMethod;
+use crate::tags::{Tags, SHARPNESS_INFINITE};
 
 /// The subdivision rule of a vertex (OpenSubdiv's `Sdc::Crease::Rule`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -402,7 +402,8 @@ pub(crate) fn find_edge(mesh: &HalfEdgeMesh, a: u32, b: u32) -> Option<u32> {
     find(a).or_else(|| find(b))
 }
 
-/// Calls `visit(edge, other_vertex)` once for every edge at `vertex`. The fast way (every
+/// Calls `visit(edge, corner)` once for every edge at `vertex`, where `corner` is a half-edge
+/// whose from-vertex is the edge's other end (see [`Weights::corner`]). The fast way (every
 /// outgoing half-edge, plus incoming boundary half-edges) counts each manifold edge once; with
 /// `general` (a non-manifold edge touches the vertex) the edges are gathered from every outgoing
 /// and incoming half-edge and de-duplicated.
@@ -416,31 +417,31 @@ pub(crate) fn for_each_incident_edge(
     let out = mesh.out_half_edges(vertex);
     if !general {
         for &h in out {
-            visit(mesh.he_edge[h as usize], mesh.to_vertex(h));
+            visit(mesh.he_edge[h as usize], mesh.next_in_cell(h));
             let incoming = mesh.prev_in_cell(h);
             if mesh.he_next_around_edge[incoming as usize] == incoming {
-                visit(mesh.he_edge[incoming as usize], mesh.he_from[incoming as usize]);
+                visit(mesh.he_edge[incoming as usize], incoming);
             }
         }
         return;
     }
     let mut list: Vec<(u32, u32)> = Vec::with_capacity(2 * out.len());
     for &h in out {
-        list.push((mesh.he_edge[h as usize], mesh.to_vertex(h)));
+        list.push((mesh.he_edge[h as usize], mesh.next_in_cell(h)));
         let incoming = mesh.prev_in_cell(h);
-        list.push((mesh.he_edge[incoming as usize], mesh.he_from[incoming as usize]));
+        list.push((mesh.he_edge[incoming as usize], incoming));
     }
     list.sort_unstable();
     list.dedup_by_key(|p| p.0);
-    for (e, other) in list {
-        visit(e, other);
+    for (e, corner) in list {
+        visit(e, corner);
     }
 }
 
 /// Walks once around `vertex` (which must have faces) as [`super::fan`] does, calling
-/// `visit(edge, other_vertex)` for each incident edge; returns the number of edges, or `None`
-/// when the faces do not form one fan (a non-manifold vertex). Edges may have been visited
-/// before `None` is known.
+/// `visit(edge, corner)` for each incident edge as [`for_each_incident_edge`] does; returns the
+/// number of edges, or `None` when the faces do not form one fan (a non-manifold vertex). Edges
+/// may have been visited before `None` is known.
 #[inline]
 fn walk_fan(mesh: &HalfEdgeMesh, vertex: u32, mut visit: impl FnMut(u32, u32)) -> Option<u32> {
     let out = mesh.out_half_edges(vertex);
@@ -448,11 +449,11 @@ fn walk_fan(mesh: &HalfEdgeMesh, vertex: u32, mut visit: impl FnMut(u32, u32)) -
     let open = mesh.he_next_around_edge[start as usize] == start;
     let mut h = start;
     for faces in 1..=out.len() as u32 {
-        visit(mesh.he_edge[h as usize], mesh.to_vertex(h));
+        visit(mesh.he_edge[h as usize], mesh.next_in_cell(h));
         let incoming = mesh.prev_in_cell(h);
         let across = mesh.he_next_around_edge[incoming as usize];
         if across == incoming {
-            visit(mesh.he_edge[incoming as usize], mesh.he_from[incoming as usize]);
+            visit(mesh.he_edge[incoming as usize], incoming);
             return (open && faces as usize == out.len()).then_some(faces + 1);
         }
         if across == start {
@@ -466,49 +467,34 @@ fn walk_fan(mesh: &HalfEdgeMesh, vertex: u32, mut visit: impl FnMut(u32, u32)) -
     None
 }
 
-/// A vertex's neighbourhood, as the smooth rules of the creased schemes read it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Neighbourhood {
-    /// The vertex's position.
-    pub v: Vec3,
-    /// Number of incident faces (the valence of an interior vertex).
-    pub faces: u32,
-    /// Sum of the other ends of the incident edges.
-    pub neighbours: Vec3,
-    /// Sum of `face_point` over the incident faces.
-    pub face_points: Vec3,
-}
-
-/// The new position of `vertex` under the crease rules: `face_point(c)` is what the scheme's
-/// smooth rule wants summed over the incident faces (Catmull-Clark's face points), `smooth` the
-/// scheme's smooth vertex rule. See the module docs.
+/// The weights of `vertex`'s new position under the crease rules. `smooth_mask(n)` is the
+/// scheme's smooth vertex mask for `n` faces: the weights on the vertex, on each neighbour and
+/// on each face point (0 for the triangle split, which has none). See the module docs.
 #[inline]
-pub(crate) fn creased_vertex_point(
+pub(crate) fn creased_vertex_point<W: Weights>(
     mesh: &HalfEdgeMesh,
     tags: &LevelTags,
     boundary: Boundary,
     vertex: u32,
-    face_point: impl Fn(u32) -> Vec3,
-    smooth: impl Fn(&Neighbourhood) -> Vec3,
-) -> Vec3 {
-    let position = |u: u32| vec3(mesh.positions[u as usize]);
-    let v = position(vertex);
+    smooth_mask: impl Fn(u32) -> [f32; 3],
+    w: &mut W,
+) {
     let out = mesh.out_half_edges(vertex);
     if out.is_empty() {
-        return v;
+        return w.vertex(vertex, 1.0);
     }
     let general = tags.is_non_manifold_vertex(vertex);
     if !general {
         if matches!(boundary, Boundary::Fixed | Boundary::Average) {
             // Our own boundary rules replace the crease rules at boundary vertices.
-            let Some(ring) = fan(mesh, vertex, |_| {}) else {
-                return v; // several fans: a corner
+            let Some(ring) = fan(mesh, vertex) else {
+                return w.vertex(vertex, 1.0); // several fans: a corner
             };
-            if ring.boundary_edges > 0 {
-                return boundary_vertex_rule(boundary, v, &ring).unwrap_or(v);
+            if boundary_vertex_rule(boundary, mesh, vertex, &ring, w) {
+                return;
             }
         } else if out.len() == 1 && boundary == Boundary::EdgeAndCorner {
-            return v; // one face (and so two edges): a corner under edge-and-corner
+            return w.vertex(vertex, 1.0); // one face (and so two edges): a corner
         }
     }
     let counts = tags.sharp_edges[vertex as usize];
@@ -519,38 +505,40 @@ pub(crate) fn creased_vertex_point(
     // A corner that stays one needs nothing more. (A vertex whose faces form several fans is a
     // corner too; the walks below find those.)
     if parent_rule == VertexRule::Corner && child_rule == VertexRule::Corner {
-        return v;
+        return w.vertex(vertex, 1.0);
     }
     // Only a smooth or dart vertex needs its whole neighbourhood; it is interior and manifold
     // (boundary and non-manifold edges are sharp), so its outgoing half-edges reach every edge.
-    let smooth_point = || {
-        let mut faces = Vec3::ZERO;
-        let ring = fan(mesh, vertex, |h| faces += face_point(mesh.cell_of(h)))?;
-        let nb =
-            Neighbourhood { v, faces: ring.faces, neighbours: ring.neighbours, face_points: faces };
-        Some(smooth(&nb))
+    let smooth = |scale: f32, w: &mut W| match fan(mesh, vertex) {
+        Some(ring) => {
+            let [center, edge, face] = smooth_mask(ring.faces);
+            let mut scaled = Scaled { inner: w, scale };
+            one_ring(mesh, vertex, &ring, edge, face, &mut scaled);
+            scaled.vertex(vertex, center);
+        }
+        None => w.vertex(vertex, scale),
     };
     if matches!(parent_rule, VertexRule::Smooth | VertexRule::Dart) {
         // Sharpness only decays: a smooth or dart vertex stays one.
-        return smooth_point().unwrap_or(v);
+        return smooth(1.0, w);
     }
-    // A crease, or a corner in transition: find the sharp edges' other ends, now and at the
-    // next level.
+    // A crease, or a corner in transition: find the sharp edges' other ends (as corners), now
+    // and at the next level.
     let (mut ends, mut found) = ([0u32; 2], 0u32);
     let (mut child_ends, mut child_found) = ([0u32; 2], 0u32);
-    let visit = |e: u32, other: u32| {
+    let visit = |e: u32, corner: u32| {
         let s = tags.edges[e as usize];
         if s > 0.0 {
             if found == 0 {
-                ends[0] = other;
+                ends[0] = corner;
             }
-            ends[1] = other;
+            ends[1] = corner;
             found += 1;
             if tags.decay_at(s, vertex) > 0.0 {
                 if child_found == 0 {
-                    child_ends[0] = other;
+                    child_ends[0] = corner;
                 }
-                child_ends[1] = other;
+                child_ends[1] = corner;
                 child_found += 1;
             }
         }
@@ -558,28 +546,35 @@ pub(crate) fn creased_vertex_point(
     if general {
         for_each_incident_edge(mesh, vertex, true, visit);
     } else if walk_fan(mesh, vertex, visit).is_none() {
-        return v; // several fans: a corner
+        return w.vertex(vertex, 1.0); // several fans: a corner
     }
-    let crease = |[a, b]: [u32; 2]| v * 0.75 + (position(a) + position(b)) * 0.125;
-    let parent = match parent_rule {
-        VertexRule::Crease => crease(ends),
-        _ => v,
+    let crease = |[a, b]: [u32; 2], scale: f32, w: &mut W| {
+        w.vertex(vertex, 0.75 * scale);
+        w.corner(a, 0.125 * scale);
+        w.corner(b, 0.125 * scale);
     };
     let (mut decayed_sum, mut decayed) = (counts.decayed_sum, counts.decayed as u32);
     if vertex_sharpness > 0.0 && child_vertex_sharpness <= 0.0 {
         decayed_sum += vertex_sharpness;
         decayed += 1;
     }
-    if child_rule == parent_rule || decayed == 0 {
-        return parent;
+    // Without a transition the parent rule alone; otherwise `weight` of it and the rest of the
+    // child rule.
+    let transition = child_rule != parent_rule && decayed > 0;
+    let weight = if transition { (decayed_sum / decayed as f32).min(1.0) } else { 1.0 };
+    match parent_rule {
+        VertexRule::Crease => crease(ends, weight, w),
+        _ => w.vertex(vertex, weight),
     }
-    let child = match child_rule {
-        VertexRule::Smooth | VertexRule::Dart => smooth_point().unwrap_or(v),
-        VertexRule::Crease => crease(child_ends),
-        VertexRule::Corner => v,
-    };
-    let weight = (decayed_sum / decayed as f32).min(1.0);
-    parent * weight + child * (1.0 - weight)
+    if !transition {
+        return;
+    }
+    let rest = 1.0 - weight;
+    match child_rule {
+        VertexRule::Smooth | VertexRule::Dart => smooth(rest, w),
+        VertexRule::Crease => crease(child_ends, rest, w),
+        VertexRule::Corner => w.vertex(vertex, rest),
+    }
 }
 
 /// The two half-edges of `edge` when its point needs the scheme's smooth mask (a smooth edge,
@@ -598,30 +593,32 @@ pub(crate) fn sharp_or_smooth(
     super::smooth_edge(mesh, edge)
 }
 
-/// The edge point of a sharp or smooth edge: `vertex_weight` on each end and `face_weight` on
-/// each of the two `opposite` points are the scheme's smooth mask; a sharp edge whose halves stay
-/// sharp gives the midpoint, one whose halves decay blends the midpoint and the smooth mask by
-/// its sharpness (`s < 1` with the uniform method; with Chaikin `s` may exceed 1, and the blend
-/// is then an extrapolation, exactly as OpenSubdiv computes it).
+/// The weights of the ends of a sharp or smooth edge; returns the weight of each of the two
+/// opposite points (face points or opposite corners), which the caller weights itself.
+/// `vertex_weight` on each end and `face_weight` on each opposite point are the scheme's smooth
+/// mask; a sharp edge whose halves stay sharp gives the midpoint, one whose halves decay blends
+/// the midpoint and the smooth mask by its sharpness (`s < 1` with the uniform method; with
+/// Chaikin `s` may exceed 1, and the blend is then an extrapolation, exactly as OpenSubdiv
+/// computes it).
 #[inline]
 pub(crate) fn creased_edge_point(
     mesh: &HalfEdgeMesh,
     tags: &LevelTags,
     edge: u32,
-    ends: [Vec3; 2],
-    opposite: Vec3,
     vertex_weight: f32,
     face_weight: f32,
-) -> Vec3 {
+    w: &mut impl Weights,
+) -> f32 {
     let s = tags.edges[edge as usize];
-    let (a, b) = (ends[0], ends[1]);
-    if s <= 0.0 {
-        return (a + b) * vertex_weight + opposite * face_weight;
-    }
-    if tags.both_halves_sharp(mesh, edge) {
-        return (a + b) * 0.5;
-    }
-    let vertex_weight = s * 0.5 + (1.0 - s) * vertex_weight;
-    let face_weight = (1.0 - s) * face_weight;
-    (a + b) * vertex_weight + opposite * face_weight
+    let (vertex_weight, face_weight) = if s <= 0.0 {
+        (vertex_weight, face_weight)
+    } else if tags.both_halves_sharp(mesh, edge) {
+        (0.5, 0.0)
+    } else {
+        (s * 0.5 + (1.0 - s) * vertex_weight, (1.0 - s) * face_weight)
+    };
+    let [a, b] = mesh.edge_vertices[edge as usize];
+    w.vertex(a, vertex_weight);
+    w.vertex(b, vertex_weight);
+    face_weight
 }

@@ -1,10 +1,11 @@
 //! Doo-Sabin corner points, with the weights of CGAL's `DooSabin_mask_3`: for an `n`-gon with
 //! vertices `v_0 .. v_{n-1}` starting at the corner, `Σ α_k v_k` with `α_0 = 1/4 + 5/(4n)` and
-//! `α_k = (3 + 2 cos(2πk/n)) / (4n)`; for quads this is `(9, 3, 1, 3) / 16`.
+//! `α_k = (3 + 2 cos(2πk/n)) / (4n)`; for quads this is `(9, 3, 1, 3) / 16`. A kept boundary
+//! is cut as Chaikin's corner cutting does (CGAL's boundary rule): `3/4` of the near end and
+//! `1/4` of the far end.
 
-use super::{vec3, CornerRules};
+use super::{CornerRules, Weights};
 use crate::mesh::HalfEdgeMesh;
-use glam::Vec3;
 use std::sync::OnceLock;
 
 /// Doo-Sabin subdivision rules.
@@ -44,25 +45,36 @@ fn weight_table() -> &'static [[f32; TABLE_SIZES]; TABLE_SIZES] {
 
 impl CornerRules for DooSabin {
     #[inline]
-    fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> Vec3 {
-        let c = mesh.cell_of(half_edge) as usize;
-        let range = mesh.cell_range(c);
-        let start = range.start;
-        let corners = &mesh.he_from[range];
-        let n = corners.len();
-        let first = half_edge as usize - start;
-        if n == 4 {
-            let p = |k: usize| vec3(mesh.positions[corners[(first + k) % 4] as usize]);
-            return (p(0) * 9.0 + (p(1) + p(3)) * 3.0 + p(2)) / 16.0;
-        }
+    fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32, w: &mut impl Weights) {
+        let range = mesh.cell_range(mesh.cell_of(half_edge) as usize);
+        let (start, n) = (range.start as u32, range.len());
+        let first = (half_edge - start) as usize;
         // From the corner round the face: the corners after it, then those before it.
-        let around = corners[first..].iter().chain(&corners[..first]);
-        let p = |v: &u32| vec3(mesh.positions[*v as usize]);
-        match weight_table().get(n) {
-            Some(weights) => around.zip(weights).fold(Vec3::ZERO, |sum, (v, &w)| sum + p(v) * w),
-            None => around
-                .enumerate()
-                .fold(Vec3::ZERO, |sum, (k, v)| sum + p(v) * doo_sabin_weight(n, k)),
+        let corner = |k: usize| start + ((first + k) % n) as u32;
+        if n == 4 {
+            for (k, weight) in
+                [9.0 / 16.0, 3.0 / 16.0, 1.0 / 16.0, 3.0 / 16.0].into_iter().enumerate()
+            {
+                w.corner(corner(k), weight);
+            }
+            return;
         }
+        match weight_table().get(n) {
+            Some(weights) => (0..n).for_each(|k| w.corner(corner(k), weights[k])),
+            None => (0..n).for_each(|k| w.corner(corner(k), doo_sabin_weight(n, k))),
+        }
+    }
+
+    #[inline]
+    fn boundary_point(
+        &self,
+        mesh: &HalfEdgeMesh,
+        half_edge: u32,
+        near: usize,
+        w: &mut impl Weights,
+    ) {
+        let [near_weight, far_weight] = if near == 0 { [0.75, 0.25] } else { [0.25, 0.75] };
+        w.corner(half_edge, near_weight);
+        w.corner(mesh.next_in_cell(half_edge), far_weight);
     }
 }

@@ -1,9 +1,8 @@
 //! The linear rules: old vertices stay, new points are midpoints and centroids. Bilinear runs on
 //! the quad split (as OpenSubdiv's bilinear scheme), midpoint on the triangle split.
 
-use super::{centroid, edge_midpoint, vec3, QuadSplitRules, TriSplitRules};
+use super::{centroid, edge_midpoint, QuadSplitRules, TriSplitRules, Weights};
 use crate::mesh::HalfEdgeMesh;
-use glam::Vec3;
 
 /// Bilinear subdivision: face centroids, edge midpoints, vertices unchanged.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -14,25 +13,25 @@ pub struct Bilinear;
 pub struct Midpoint;
 
 impl QuadSplitRules for Bilinear {
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-        centroid(mesh, cell)
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
+        centroid(mesh, cell, w)
     }
 
-    fn edge_point(&self, mesh: &HalfEdgeMesh, _: &[[f32; 3]], edge: u32) -> Vec3 {
-        edge_midpoint(mesh, edge)
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        edge_midpoint(mesh, edge, w)
     }
 
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, _: &[[f32; 3]], vertex: u32) -> Vec3 {
-        vec3(mesh.positions[vertex as usize])
+    fn vertex_point(&self, _: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        w.vertex(vertex, 1.0)
     }
 }
 
 impl TriSplitRules for Midpoint {
-    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
-        edge_midpoint(mesh, edge)
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        edge_midpoint(mesh, edge, w)
     }
 
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
-        vec3(mesh.positions[vertex as usize])
+    fn vertex_point(&self, _: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        w.vertex(vertex, 1.0)
     }
 }

@@ -10,10 +10,10 @@
 //! non-manifold edges and vertices (see [`super::crease`]).
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
-use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, vec3, TriSplitRules};
+use super::Weights;
+use super::{boundary_vertex_rule, edge_midpoint, one_ring, ring, smooth_edge, TriSplitRules};
 use crate::mesh::HalfEdgeMesh;
-use crate::scheme::Boundary;
-use glam::Vec3;
+use crate::options::Boundary;
 
 /// Loop subdivision rules; triangles only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -28,35 +28,47 @@ pub fn loop_beta(n: u32) -> f32 {
     ((0.625 - c * c) / n) as f32
 }
 
-/// The corner of `h`'s triangle opposite its edge.
+/// The smooth vertex mask of valence `n`: weights on the vertex and on each neighbour (and none
+/// on face points, which the triangle split does not have).
 #[inline]
-fn opposite(mesh: &HalfEdgeMesh, h: u32) -> Vec3 {
-    vec3(mesh.positions[mesh.he_from[mesh.prev_in_cell(h) as usize] as usize])
+fn smooth_vertex_mask(n: u32) -> [f32; 3] {
+    let beta = loop_beta(n);
+    [1.0 - n as f32 * beta, beta, 0.0]
+}
+
+/// The corner of `h`'s triangle opposite its edge, as a corner (see [`Weights::corner`]).
+#[inline]
+fn opposite(mesh: &HalfEdgeMesh, h: u32) -> u32 {
+    mesh.prev_in_cell(h)
 }
 
 impl TriSplitRules for Loop {
     #[inline]
-    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         match smooth_edge(mesh, edge) {
             Some([h0, h1]) => {
-                edge_midpoint(mesh, edge) * 0.75 + (opposite(mesh, h0) + opposite(mesh, h1)) * 0.125
+                let [a, b] = mesh.edge_vertices[edge as usize];
+                w.vertex(a, 0.375);
+                w.vertex(b, 0.375);
+                w.corner(opposite(mesh, h0), 0.125);
+                w.corner(opposite(mesh, h1), 0.125);
             }
-            None => edge_midpoint(mesh, edge),
+            None => edge_midpoint(mesh, edge, w),
         }
     }
 
     #[inline]
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
-        let v = vec3(mesh.positions[vertex as usize]);
-        let ring = ring(mesh, vertex, |_| {});
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        let ring = ring(mesh, vertex);
         if ring.faces == 0 {
-            return v;
+            return w.vertex(vertex, 1.0);
         }
-        if let Some(p) = boundary_vertex_rule(self.boundary, v, &ring) {
-            return p;
+        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
+            return;
         }
-        let beta = loop_beta(ring.valence);
-        v * (1.0 - ring.valence as f32 * beta) + ring.neighbours * beta
+        let [center, edge, _] = smooth_vertex_mask(ring.valence);
+        one_ring(mesh, vertex, &ring, edge, 0.0, w);
+        w.vertex(vertex, center);
     }
 }
 
@@ -70,28 +82,19 @@ pub struct CreasedLoop<'a> {
 
 impl TriSplitRules for CreasedLoop<'_> {
     #[inline]
-    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32) -> Vec3 {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         let Some([h0, h1]) = sharp_or_smooth(mesh, self.tags, edge) else {
-            return edge_midpoint(mesh, edge);
+            return edge_midpoint(mesh, edge, w);
         };
-        let [a, b] = mesh.edge_vertices[edge as usize];
-        let ends = [vec3(mesh.positions[a as usize]), vec3(mesh.positions[b as usize])];
-        let far = opposite(mesh, h0) + opposite(mesh, h1);
-        creased_edge_point(mesh, self.tags, edge, ends, far, 0.375, 0.125)
+        let far = creased_edge_point(mesh, self.tags, edge, 0.375, 0.125, w);
+        if far != 0.0 {
+            w.corner(opposite(mesh, h0), far);
+            w.corner(opposite(mesh, h1), far);
+        }
     }
 
     #[inline]
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32) -> Vec3 {
-        creased_vertex_point(
-            mesh,
-            self.tags,
-            self.boundary,
-            vertex,
-            |_| Vec3::ZERO,
-            |nb| {
-                let beta = loop_beta(nb.faces);
-                nb.v * (1.0 - nb.faces as f32 * beta) + nb.neighbours * beta
-            },
-        )
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        creased_vertex_point(mesh, self.tags, self.boundary, vertex, smooth_vertex_mask, w)
     }
 }

@@ -44,10 +44,9 @@
 //! edges next to the edge). On the boundary the refined crease rule and seed 003's mean equal
 //! the parent-mesh forms of [`boundary_vertex_rule`], and boundary edge points stay midpoints.
 
-use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, vec3, MixedSplitRules};
+use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, MixedSplitRules, Weights};
 use crate::mesh::HalfEdgeMesh;
-use crate::scheme::Boundary;
-use glam::Vec3;
+use crate::options::Boundary;
 
 /// Stam & Loop's Quad/Triangle rules.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -61,99 +60,113 @@ pub fn triangle_vertex_weight(n: u32) -> f32 {
     (2.0 * c * c - 0.25) as f32
 }
 
-/// The refined one-ring of a vertex of the refined mesh: its valence, how many of its faces
-/// are quads and how many are not, the sum of its neighbours and of its quad diagonals.
+/// The refined one-ring of a vertex of the refined mesh, counted: its valence, how many of its
+/// faces are quads and how many are not.
 #[derive(Default)]
 struct RefinedRing {
     valence: u32,
     quads: u32,
     triangles: u32,
-    neighbours: Vec3,
-    diagonals: Vec3,
 }
 
 impl RefinedRing {
-    /// The averaging step of the derivation above, for an interior vertex at `v`.
-    fn smooth(&self, v: Vec3) -> Vec3 {
+    /// The averaging step of the derivation above for an interior vertex: the weights on the
+    /// vertex itself, on the sum of its refined neighbours and on the sum of its quad diagonals.
+    fn mask(&self) -> [f32; 3] {
         let n = self.valence as f32;
         if self.triangles == 0 {
-            v * ((n - 3.0) / n) + (self.neighbours * 2.0 + self.diagonals) / (n * n)
+            [(n - 3.0) / n, 2.0 / (n * n), 1.0 / (n * n)]
         } else if self.quads == 0 {
             let a = triangle_vertex_weight(self.valence);
-            v * a + self.neighbours * ((1.0 - a) / n)
+            [a, (1.0 - a) / n, 0.0]
         } else {
             let alpha = 1.0 / (1.0 + 0.5 * n + 0.25 * self.quads as f32);
-            (v + self.neighbours * 0.5 + self.diagonals * 0.25) * alpha
+            [alpha, 0.5 * alpha, 0.25 * alpha]
         }
     }
 }
 
-fn cell_size(mesh: &HalfEdgeMesh, c: usize) -> u32 {
-    mesh.cell_range(c).len() as u32
-}
-
-fn position(mesh: &HalfEdgeMesh, v: u32) -> Vec3 {
-    vec3(mesh.positions[v as usize])
+fn is_triangle(mesh: &HalfEdgeMesh, c: u32) -> bool {
+    mesh.cell_range(c as usize).len() == 3
 }
 
 impl MixedSplitRules for QuadTriangle {
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-        super::centroid(mesh, cell)
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
+        super::centroid(mesh, cell, w)
     }
 
-    fn edge_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], edge: u32) -> Vec3 {
-        let m = edge_midpoint(mesh, edge);
-        let Some(halves) = smooth_edge(mesh, edge) else { return m };
-        let [a, b] = mesh.edge_vertices[edge as usize];
-        let mut r = RefinedRing {
-            valence: 2,
-            neighbours: position(mesh, a) + position(mesh, b),
-            ..RefinedRing::default()
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        let Some(halves) = smooth_edge(mesh, edge) else {
+            return edge_midpoint(mesh, edge, w);
         };
+        // The edge point sits at the midpoint `m` of the linear split; its refined neighbours
+        // are the edge's ends, and per side the face's point or the triangle's two other
+        // midpoints and far corner.
+        let mut r = RefinedRing { valence: 2, ..RefinedRing::default() };
         for h in halves {
-            let c = mesh.cell_of(h) as usize;
-            let (prev, next) = (mesh.prev_in_cell(h), mesh.next_in_cell(h));
-            let before = position(mesh, mesh.he_from[prev as usize]);
-            let after = position(mesh, mesh.to_vertex(next));
-            let (from, to) = (
-                position(mesh, mesh.he_from[h as usize]),
-                position(mesh, mesh.he_from[next as usize]),
-            );
-            if cell_size(mesh, c) == 3 {
-                // `before == after` is the opposite corner; its two edges' midpoints.
+            if is_triangle(mesh, mesh.cell_of(h)) {
                 r.valence += 2;
                 r.triangles += 3;
-                r.neighbours += (from + to) * 0.5 + before;
             } else {
                 r.valence += 1;
                 r.quads += 2;
-                r.neighbours += vec3(face_points[c]);
-                r.diagonals += (before + from + to + after) * 0.5;
             }
         }
-        r.smooth(m)
+        let [center, neighbour, diagonal] = r.mask();
+        let [a, b] = mesh.edge_vertices[edge as usize];
+        // `m` and the two ends.
+        w.vertex(a, 0.5 * center + neighbour);
+        w.vertex(b, 0.5 * center + neighbour);
+        for h in halves {
+            let c = mesh.cell_of(h);
+            let (prev, next) = (mesh.prev_in_cell(h), mesh.next_in_cell(h));
+            if is_triangle(mesh, c) {
+                // The midpoints of the triangle's two other edges, `(from + to)/2 + before`
+                // between them (`before` is the opposite corner).
+                w.corner(h, 0.5 * neighbour);
+                w.corner(next, 0.5 * neighbour);
+                w.corner(prev, neighbour);
+            } else {
+                // The face point, and the diagonals of the two child quads at the edge point:
+                // the midpoints of the face's edges next to the edge, `(before + from + to +
+                // after)/2` between them.
+                w.face_point(c, neighbour);
+                let half = 0.5 * diagonal;
+                w.corner(prev, half);
+                w.corner(h, half);
+                w.corner(next, half);
+                w.corner(mesh.next_in_cell(next), half);
+            }
+        }
     }
 
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, face_points: &[[f32; 3]], vertex: u32) -> Vec3 {
-        let v = position(mesh, vertex);
-        let mut r = RefinedRing::default();
-        let ring = ring(mesh, vertex, |h| {
-            let c = mesh.cell_of(h) as usize;
-            if cell_size(mesh, c) == 3 {
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        let ring = ring(mesh, vertex);
+        if ring.faces == 0 {
+            return w.vertex(vertex, 1.0);
+        }
+        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
+            return;
+        }
+        let mut r = RefinedRing { valence: ring.valence, ..RefinedRing::default() };
+        let out = mesh.out_half_edges(vertex);
+        for &h in out {
+            if is_triangle(mesh, mesh.cell_of(h)) {
                 r.triangles += 1;
             } else {
                 r.quads += 1;
-                r.diagonals += vec3(face_points[c]);
             }
-        });
-        if ring.faces == 0 {
-            return v;
         }
-        if let Some(p) = boundary_vertex_rule(self.boundary, v, &ring) {
-            return p;
+        // The refined neighbours are the midpoints `(v + p_i)/2` of the vertex's edges, the
+        // diagonals the face points of its quads.
+        let [center, neighbour, diagonal] = r.mask();
+        for &h in out {
+            w.corner(mesh.next_in_cell(h), 0.5 * neighbour);
+            let c = mesh.cell_of(h);
+            if !is_triangle(mesh, c) {
+                w.face_point(c, diagonal);
+            }
         }
-        r.valence = ring.valence;
-        r.neighbours = (v * ring.valence as f32 + ring.neighbours) * 0.5;
-        r.smooth(v)
+        w.vertex(vertex, center + 0.5 * neighbour * ring.valence as f32);
     }
 }

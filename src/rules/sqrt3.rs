@@ -15,26 +15,38 @@
 //! boundary option gives Kobbelt's rule: √3 has one boundary rule, which moves corners (vertices
 //! of one face) too, as CGAL does; seed 003's midpoint average has no √3 counterpart.
 
-use super::{centroid, ring, vec3};
+use super::{boundary_ring, centroid, one_ring, ring, Weights};
 use crate::mesh::HalfEdgeMesh;
-use crate::scheme::Boundary;
-use glam::Vec3;
+use crate::options::Boundary;
 
 /// The geometry policy of the √3 split ([`crate::refine::sqrt3`]): every face without a refined
 /// boundary edge gets a face point, every refined boundary half-edge two points, every vertex a
-/// new position. All are functions of the parent mesh only.
+/// new position. All are weights of parent values only (no rule weights face points).
 ///
 /// Implementations must be pure functions of their arguments: the host may call them in any
 /// order or from several threads.
 pub trait Sqrt3Rules {
-    /// The point for cell `cell`.
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3;
-    /// The new position of vertex `vertex`; `refine_boundary` says whether this level splits
-    /// boundary edges.
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, refine_boundary: bool) -> Vec3;
-    /// The two points on boundary half-edge `half_edge` (from `t` to `s`): the one near `t`, then
-    /// the one near `s`. Called only on levels that refine the boundary.
-    fn boundary_points(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> [Vec3; 2];
+    /// The weights of the point for cell `cell`.
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights);
+    /// The weights of the new position of vertex `vertex`; `refine_boundary` says whether this
+    /// level splits boundary edges.
+    fn vertex_point(
+        &self,
+        mesh: &HalfEdgeMesh,
+        vertex: u32,
+        refine_boundary: bool,
+        w: &mut impl Weights,
+    );
+    /// The weights of one of the two points on boundary half-edge `half_edge` (from `t` to `s`):
+    /// the one near `t` (`near == 0`) or the one near `s` (`near == 1`). Called only on levels
+    /// that refine the boundary.
+    fn boundary_point(
+        &self,
+        mesh: &HalfEdgeMesh,
+        half_edge: u32,
+        near: usize,
+        w: &mut impl Weights,
+    );
 }
 
 /// √3 subdivision rules; triangles only.
@@ -49,59 +61,81 @@ pub fn sqrt3_alpha(n: u32) -> f32 {
     ((4.0 - 2.0 * c) / 9.0) as f32
 }
 
-/// The boundary neighbours of boundary half-edge `t → s`: `q` before `t` and `r` after `s`
-/// along the boundary (`t` and `s` themselves where the mesh does not say, which a manifold
-/// boundary never leaves open).
+/// The boundary neighbours of boundary half-edge `t → s`, as corners (see [`Weights::corner`]):
+/// `q` before `t` and `r` after `s` along the boundary (`t` and `s` themselves where the mesh
+/// does not say, which a manifold boundary never leaves open).
 fn boundary_neighbours(mesh: &HalfEdgeMesh, half_edge: u32) -> (u32, u32) {
-    let t = mesh.he_from[half_edge as usize];
-    let s = mesh.to_vertex(half_edge);
+    let (t, s) = (half_edge, mesh.next_in_cell(half_edge));
     let is_boundary = |h: u32| mesh.he_next_around_edge[h as usize] == h;
     // A boundary vertex lists its outgoing boundary half-edge first.
-    let r = match mesh.out_half_edges(s).first() {
-        Some(&h) if is_boundary(h) => mesh.to_vertex(h),
+    let r = match mesh.out_half_edges(mesh.he_from[s as usize]).first() {
+        Some(&h) if is_boundary(h) => mesh.next_in_cell(h),
         _ => s,
     };
     let q = mesh
-        .out_half_edges(t)
+        .out_half_edges(mesh.he_from[t as usize])
         .iter()
         .map(|&h| mesh.prev_in_cell(h))
         .find(|&h| is_boundary(h))
-        .map_or(t, |h| mesh.he_from[h as usize]);
+        .unwrap_or(t);
     (q, r)
 }
 
 impl Sqrt3Rules for Sqrt3 {
     #[inline]
-    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32) -> Vec3 {
-        centroid(mesh, cell)
+    fn face_point(&self, mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
+        centroid(mesh, cell, w)
     }
 
     #[inline]
-    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, refine_boundary: bool) -> Vec3 {
-        let v = vec3(mesh.positions[vertex as usize]);
-        let ring = ring(mesh, vertex, |_| {});
+    fn vertex_point(
+        &self,
+        mesh: &HalfEdgeMesh,
+        vertex: u32,
+        refine_boundary: bool,
+        w: &mut impl Weights,
+    ) {
+        let ring = ring(mesh, vertex);
         if ring.faces == 0 {
-            return v;
+            return w.vertex(vertex, 1.0);
         }
         if ring.boundary_edges > 0 {
             // Two boundary edges: a boundary vertex; more: several fans meet, no direction.
             let moves =
                 refine_boundary && ring.boundary_edges == 2 && self.boundary != Boundary::Fixed;
-            return if moves { (v * 19.0 + ring.boundary * 4.0) / 27.0 } else { v };
+            if moves {
+                w.vertex(vertex, 19.0 / 27.0);
+                boundary_ring(mesh, vertex, 4.0 / 27.0, w);
+            } else {
+                w.vertex(vertex, 1.0);
+            }
+            return;
         }
         let alpha = sqrt3_alpha(ring.valence);
-        v * (1.0 - alpha) + ring.neighbours * (alpha / ring.valence as f32)
+        one_ring(mesh, vertex, &ring, alpha / ring.valence as f32, 0.0, w);
+        w.vertex(vertex, 1.0 - alpha);
     }
 
     #[inline]
-    fn boundary_points(&self, mesh: &HalfEdgeMesh, half_edge: u32) -> [Vec3; 2] {
-        let t = mesh.he_from[half_edge as usize];
-        let s = mesh.to_vertex(half_edge);
-        let p = |v: u32| vec3(mesh.positions[v as usize]);
+    fn boundary_point(
+        &self,
+        mesh: &HalfEdgeMesh,
+        half_edge: u32,
+        near: usize,
+        w: &mut impl Weights,
+    ) {
+        let (t, s) = (half_edge, mesh.next_in_cell(half_edge));
+        let (near_end, far_end) = if near == 0 { (t, s) } else { (s, t) };
         if self.boundary == Boundary::Fixed {
-            return [(p(t) * 2.0 + p(s)) / 3.0, (p(t) + p(s) * 2.0) / 3.0];
+            w.corner(near_end, 2.0 / 3.0);
+            w.corner(far_end, 1.0 / 3.0);
+            return;
         }
         let (q, r) = boundary_neighbours(mesh, half_edge);
-        [(p(q) + p(t) * 16.0 + p(s) * 10.0) / 27.0, (p(t) * 10.0 + p(s) * 16.0 + p(r)) / 27.0]
+        // (q + 16t + 10s)/27 near t, (10t + 16s + r)/27 near s.
+        let beyond = if near == 0 { q } else { r };
+        w.corner(beyond, 1.0 / 27.0);
+        w.corner(near_end, 16.0 / 27.0);
+        w.corner(far_end, 10.0 / 27.0);
     }
 }

@@ -1,0 +1,80 @@
+//! The vocabulary rules speak in: a new point is a weighted sum of parent values, named by
+//! topology alone. OpenSubdiv's `Sdc` masks carry the same information as three weight lists
+//! (vertex, edges, faces) over a neighbourhood the caller lays out; a sink that is told each
+//! source as the rule finds it needs no such layout, and lets a rule say "the other end of this
+//! half-edge" in a way that face-varying data can resolve per face.
+
+/// Where a rule puts the weights of one new point: each call adds `weight` times one parent
+/// value. The weights of a point sum to 1 (every rule here is affine).
+pub trait Weights {
+    /// The value at parent vertex `v`, which is either the vertex a vertex rule moves or an end
+    /// of the edge an edge rule splits. Data with several values per vertex (face-varying
+    /// seams) resolves it from that context.
+    fn vertex(&mut self, v: u32, weight: f32);
+    /// The value at the corner where parent half-edge `h` starts: its from-vertex, as `h`'s cell
+    /// sees it.
+    fn corner(&mut self, h: u32, weight: f32);
+    /// The face point of parent cell `c`: a point of the child level, which the host computes
+    /// before any point that weights it.
+    fn face_point(&mut self, c: u32, weight: f32);
+}
+
+/// A sink that scales every weight by `scale` before passing it on: a rule that blends two
+/// rules (a crease in transition) runs each into its own `Scaled`.
+pub struct Scaled<'a, W: Weights> {
+    pub inner: &'a mut W,
+    pub scale: f32,
+}
+
+impl<W: Weights> Weights for Scaled<'_, W> {
+    #[inline(always)]
+    fn vertex(&mut self, v: u32, weight: f32) {
+        self.inner.vertex(v, weight * self.scale);
+    }
+
+    #[inline(always)]
+    fn corner(&mut self, h: u32, weight: f32) {
+        self.inner.corner(h, weight * self.scale);
+    }
+
+    #[inline(always)]
+    fn face_point(&mut self, c: u32, weight: f32) {
+        self.inner.face_point(c, weight * self.scale);
+    }
+}
+
+/// One source of a recorded stencil.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Source {
+    Vertex(u32),
+    Corner(u32),
+    FacePoint(u32),
+}
+
+/// A sink that records the weights as given, in order: for applying one rule's weights to
+/// several buffers, for tests, and for rule sets written outside the crate to inspect.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stencil {
+    pub sources: Vec<(Source, f32)>,
+}
+
+impl Stencil {
+    /// The sum of all weights (1 for an affine rule).
+    pub fn total(&self) -> f32 {
+        self.sources.iter().map(|&(_, w)| w).sum()
+    }
+}
+
+impl Weights for Stencil {
+    fn vertex(&mut self, v: u32, weight: f32) {
+        self.sources.push((Source::Vertex(v), weight));
+    }
+
+    fn corner(&mut self, h: u32, weight: f32) {
+        self.sources.push((Source::Corner(h), weight));
+    }
+
+    fn face_point(&mut self, c: u32, weight: f32) {
+        self.sources.push((Source::FacePoint(c), weight));
+    }
+}
