@@ -15,6 +15,9 @@ pub enum Error {
     /// A crease, corner or hole tag names something the mesh does not have, or a sharpness is
     /// negative or NaN. The message names the tag.
     InvalidTag(String),
+    /// An attribute channel does not fit the mesh, or its values are not finite. The message
+    /// names the channel.
+    InvalidAttribute(String),
     /// The mesh is valid but the chosen scheme is not defined on it.
     Unsupported(String),
     /// The predicted output exceeds the configured memory guard.
@@ -36,6 +39,7 @@ impl fmt::Display for Error {
             Error::Obj { line, message } => write!(f, "OBJ line {line}: {message}"),
             Error::InvalidOption(m) => write!(f, "invalid option: {m}"),
             Error::InvalidTag(m) => write!(f, "invalid tag: {m}"),
+            Error::InvalidAttribute(m) => write!(f, "invalid attribute: {m}"),
             Error::Unsupported(m) => write!(f, "unsupported input: {m}"),
             Error::TooLarge(m) => write!(f, "output too large: {m}"),
             Error::Io(m) => write!(f, "{m}"),

@@ -18,12 +18,15 @@
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`refine`] (topology hosts) × [`rules`]
 //! (stencil policies), [`scheme`] (the public vocabulary), [`io`] (OBJ), and the wasm bindings.
 
+pub mod attributes;
 pub mod error;
 pub mod io;
 pub mod mesh;
 pub mod options;
+pub mod predict;
 pub mod primvar;
 pub mod refine;
+pub mod refined;
 pub mod rules;
 pub mod scheme;
 pub mod shapes;

@@ -1,10 +1,139 @@
-//! The options every scheme shares, apart from the scheme itself: what happens at the boundary
-//! and how semi-sharp creases decay (OpenSubdiv's `Sdc::Options`). A leaf module: the rules,
-//! the hosts and the public vocabulary all read it, and it reads none of them.
+//! The public vocabulary of a call: the schemes, the options every scheme shares (what happens
+//! at the boundary and how semi-sharp creases decay, as OpenSubdiv's `Sdc::Options`), and the
+//! guards. A leaf module: the rules, the hosts and the driver all read it, and it reads none of
+//! them.
 
 use crate::error::{Error, Result};
 use std::fmt;
 use std::str::FromStr;
+
+/// A subdivision scheme.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Scheme {
+    /// Catmull-Clark: any polygons in, quads out.
+    #[default]
+    CatmullClark,
+    /// Loop: triangles in, triangles out.
+    Loop,
+    /// Doo-Sabin: the dual quadratic scheme; any polygons.
+    DooSabin,
+    /// Bilinear: the quad split with centroids and midpoints; any polygons.
+    Bilinear,
+    /// Midpoint: the triangle split with midpoints; triangles only.
+    Midpoint,
+    /// Quad/Triangle (Stam & Loop 2003): Catmull-Clark on quads, Loop on triangles, and a
+    /// blend where they meet; other polygons split into quads at the first level.
+    QuadTriangle,
+    /// √3 (Kobbelt 2000): a centroid per triangle, old edges flipped; triangles only. Boundary
+    /// edges are split on every second level of a run of √3 levels, as CGAL does.
+    Sqrt3,
+}
+
+impl Scheme {
+    pub const ALL: &'static [Scheme] = &[
+        Scheme::CatmullClark,
+        Scheme::Loop,
+        Scheme::DooSabin,
+        Scheme::QuadTriangle,
+        Scheme::Sqrt3,
+        Scheme::Bilinear,
+        Scheme::Midpoint,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::CatmullClark => "catmull-clark",
+            Scheme::Loop => "loop",
+            Scheme::DooSabin => "doo-sabin",
+            Scheme::Bilinear => "bilinear",
+            Scheme::Midpoint => "midpoint",
+            Scheme::QuadTriangle => "quad-triangle",
+            Scheme::Sqrt3 => "sqrt3",
+        }
+    }
+
+    /// True for the schemes that follow [`Tags`] (creases, corners, holes): Catmull-Clark and
+    /// Loop use them, bilinear and midpoint carry them to the next level of a list.
+    pub fn supports_tags(self) -> bool {
+        matches!(self, Scheme::CatmullClark | Scheme::Loop | Scheme::Bilinear | Scheme::Midpoint)
+    }
+
+    /// True for the schemes defined on triangles only.
+    pub fn triangles_only(self) -> bool {
+        matches!(self, Scheme::Loop | Scheme::Midpoint | Scheme::Sqrt3)
+    }
+
+    /// Parses one name or a comma-separated list of names, one per level.
+    pub fn parse_list(list: &str) -> Result<Vec<Scheme>> {
+        list.split(',').map(|name| name.trim().parse()).collect()
+    }
+}
+
+impl FromStr for Scheme {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        parse_name("scheme", s, Scheme::ALL, Scheme::name)
+    }
+}
+
+impl fmt::Display for Scheme {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The default memory guard: the most output faces one call may produce. 16 M quads with their
+/// positions, indices and a triangle list take about 1 GiB, which fits a wasm32 memory next to
+/// the level before it.
+pub const DEFAULT_MAX_FACES: u64 = 1 << 24;
+
+/// The default byte guard: 1 GiB for the result's arrays (positions, indices, face sizes and a
+/// triangle list), which leaves room in a 4 GiB wasm32 memory for the level it is made from.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
+/// The most levels one call accepts: beyond any guard for a mesh with faces, and it bounds the
+/// work on meshes without any.
+pub const MAX_LEVELS: usize = 32;
+
+/// How to subdivide.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// The scheme of each level, first level first. Its length is the number of levels.
+    pub schemes: Vec<Scheme>,
+    pub boundary: Boundary,
+    /// Refuse, before any work, when the last level would have more faces than this.
+    pub max_faces: u64,
+    /// Refuse, before any work, when the result's arrays would take more bytes than this
+    /// (see [`Prediction::bytes`]).
+    pub max_bytes: u64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            schemes: vec![Scheme::CatmullClark],
+            boundary: Boundary::default(),
+            max_faces: DEFAULT_MAX_FACES,
+            max_bytes: DEFAULT_MAX_BYTES,
+        }
+    }
+}
+
+impl Options {
+    /// `levels` levels of one scheme.
+    pub fn new(scheme: Scheme, levels: u32) -> Self {
+        Options { schemes: vec![scheme; levels as usize], ..Options::default() }
+    }
+
+    pub fn with_boundary(mut self, boundary: Boundary) -> Self {
+        self.boundary = boundary;
+        self
+    }
+
+    pub fn levels(&self) -> usize {
+        self.schemes.len()
+    }
+}
 
 /// What happens on boundary edges and vertices.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

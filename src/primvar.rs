@@ -95,3 +95,109 @@ impl Weights for RowSum<'_> {
         Self::add(&mut self.sum, &self.face_rows[start..start + self.width], weight);
     }
 }
+
+/// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.
+/// Width 0 (no channel) costs nothing at any level.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Rows {
+    pub width: usize,
+    pub values: Vec<f32>,
+}
+
+impl Rows {
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.values.len().checked_div(self.width).unwrap_or(0)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.width == 0 || self.values.is_empty()
+    }
+}
+
+/// One level's values of one kind (positions, or [`Rows`]), as the hosts refine them: the same
+/// loop over new points serves every kind. A host asks for a sum over the parent values (and
+/// the child level's face points, where its rules weight them), then appends or places each new
+/// value.
+pub trait Primvar: Sized {
+    /// The sink that sums one new value.
+    type Sum<'a>: Weights
+    where
+        Self: 'a;
+    /// A sum over these (parent) values, with `face_points` the child level's face points when
+    /// the rules weight them.
+    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> Self::Sum<'a>;
+    /// No values of this kind's shape, with room for `capacity`.
+    fn with_capacity(&self, capacity: usize) -> Self;
+    /// Appends the value whose weights `rule` gives.
+    fn push<'a>(&mut self, sum: &mut Self::Sum<'a>, rule: impl FnOnce(&mut Self::Sum<'a>));
+    /// Appends every value of `other`.
+    fn extend_from(&mut self, other: &Self);
+    /// Appends `count` zero values, to be placed later with [`Primvar::set`].
+    fn extend_zeroed(&mut self, count: usize);
+    /// Overwrites value `i` with the one whose weights `rule` gives.
+    fn set<'a>(&mut self, i: usize, sum: &mut Self::Sum<'a>, rule: impl FnOnce(&mut Self::Sum<'a>));
+}
+
+impl Primvar for Vec<[f32; 3]> {
+    type Sum<'a> = PointSum<'a>;
+
+    #[inline]
+    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> PointSum<'a> {
+        PointSum::new(self, he_from, face_points.map_or(&[], |f| f))
+    }
+
+    fn with_capacity(&self, capacity: usize) -> Self {
+        Vec::with_capacity(capacity)
+    }
+
+    #[inline(always)]
+    fn push<'a>(&mut self, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
+        self.push(sum.eval(rule));
+    }
+
+    fn extend_from(&mut self, other: &Self) {
+        self.extend_from_slice(other);
+    }
+
+    fn extend_zeroed(&mut self, count: usize) {
+        self.resize(self.len() + count, [0.0; 3]);
+    }
+
+    #[inline(always)]
+    fn set<'a>(&mut self, i: usize, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
+        self[i] = sum.eval(rule);
+    }
+}
+
+impl Primvar for Rows {
+    type Sum<'a> = RowSum<'a>;
+
+    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> RowSum<'a> {
+        RowSum::new(&self.values, self.width, he_from, face_points.map_or(&[], |f| &f.values))
+    }
+
+    fn with_capacity(&self, capacity: usize) -> Self {
+        Rows { width: self.width, values: Vec::with_capacity(capacity * self.width) }
+    }
+
+    #[inline]
+    fn push<'a>(&mut self, sum: &mut RowSum<'a>, rule: impl FnOnce(&mut RowSum<'a>)) {
+        sum.eval_into(&mut self.values, rule);
+    }
+
+    fn extend_from(&mut self, other: &Self) {
+        self.values.extend_from_slice(&other.values);
+    }
+
+    fn extend_zeroed(&mut self, count: usize) {
+        self.values.resize(self.values.len() + count * self.width, 0.0);
+    }
+
+    #[inline]
+    fn set<'a>(&mut self, i: usize, sum: &mut RowSum<'a>, rule: impl FnOnce(&mut RowSum<'a>)) {
+        sum.sum.fill(0.0);
+        rule(sum);
+        self.values[i * self.width..(i + 1) * self.width].copy_from_slice(&sum.sum);
+    }
+}

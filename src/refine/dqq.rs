@@ -27,7 +27,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
-use crate::primvar::PointSum;
+use crate::primvar::{Primvar, Rows};
 use crate::rules::CornerRules;
 
 /// No such child element: no face for this edge, no vertex face for this corner.
@@ -238,42 +238,57 @@ impl Layout {
     }
 }
 
-/// Writes the corner points, then the Chaikin points, in child vertex order.
-fn child_points<R: CornerRules>(
+/// The corner points, then the Chaikin points, in child vertex order, from `parent`.
+fn child_points<R: CornerRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     layout: &Layout,
-    points: &mut [[f32; 3]],
-) {
-    let (corners, chaikin) = points.split_at_mut(mesh.num_half_edges());
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
-    for (h, p) in corners.iter_mut().enumerate() {
-        *p = sum.eval(|w| rules.corner_point(mesh, h as u32, w));
+    parent: &P,
+) -> P {
+    let mut points = parent.with_capacity(layout.num_child_vertices(mesh));
+    let mut sum = parent.sum(&mesh.he_from, None);
+    for h in 0..mesh.num_half_edges() as u32 {
+        points.push(&mut sum, |w| rules.corner_point(mesh, h, w));
     }
-    for (pair, &h) in chaikin.chunks_exact_mut(2).zip(&layout.boundary) {
-        for (near, p) in pair.iter_mut().enumerate() {
-            *p = sum.eval(|w| rules.boundary_point(mesh, h, near, w));
+    for &h in &layout.boundary {
+        for near in 0..2 {
+            points.push(&mut sum, |w| rules.boundary_point(mesh, h, near, w));
         }
     }
+    points
+}
+
+/// The child values of the vertex-varying `rows` (none when it is empty).
+fn child_rows<R: CornerRules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    layout: &Layout,
+    rows: &Rows,
+) -> Rows {
+    if rows.is_empty() {
+        return Rows::default();
+    }
+    child_points(mesh, rules, layout, rows)
 }
 
 /// One dual level: the child mesh as flat arrays. `check` must have passed.
 pub fn refine<R: CornerRules>(mesh: &HalfEdgeMesh, rules: &R, boundary: DualBoundary) -> PolyMesh {
-    let layout = Layout::new(mesh, boundary);
-    let (positions, indices) = points_and_faces(mesh, rules, &layout);
-    let face_sizes = layout.face_sizes(mesh);
-    PolyMesh { positions: positions.into_flattened(), indices, face_sizes }
+    refine_with(mesh, rules, boundary, &Rows::default()).0
 }
 
-/// The child positions and face list of one dual level, shared by both outputs.
-fn points_and_faces<R: CornerRules>(
+/// [`refine`], and the child values of the vertex-varying `rows`.
+pub fn refine_with<R: CornerRules>(
     mesh: &HalfEdgeMesh,
     rules: &R,
-    layout: &Layout,
-) -> (Vec<[f32; 3]>, Vec<u32>) {
-    let mut positions = vec![[0.0f32; 3]; layout.num_child_vertices(mesh)];
-    child_points(mesh, rules, layout, &mut positions);
-    (positions, layout.face_indices(mesh))
+    boundary: DualBoundary,
+    rows: &Rows,
+) -> (PolyMesh, Rows) {
+    let layout = Layout::new(mesh, boundary);
+    let positions = child_points(mesh, rules, &layout, &mesh.positions);
+    let indices = layout.face_indices(mesh);
+    let face_sizes = layout.face_sizes(mesh);
+    let rows = child_rows(mesh, rules, &layout, rows);
+    (PolyMesh { positions: positions.into_flattened(), indices, face_sizes }, rows)
 }
 
 /// One dual level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
@@ -285,11 +300,24 @@ pub fn child_mesh<R: CornerRules>(
     rules: &R,
     boundary: DualBoundary,
 ) -> Result<HalfEdgeMesh> {
+    child_mesh_with(mesh, rules, boundary, &Rows::default()).map(|(child, _)| child)
+}
+
+/// [`child_mesh`], and the child values of the vertex-varying `rows`.
+pub fn child_mesh_with<R: CornerRules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    boundary: DualBoundary,
+    rows: &Rows,
+) -> Result<(HalfEdgeMesh, Rows)> {
     if mesh.is_non_manifold() || mesh.num_half_edges() == 0 {
-        return HalfEdgeMesh::from_poly(&refine(mesh, rules, boundary));
+        let (poly, rows) = refine_with(mesh, rules, boundary, rows);
+        return Ok((HalfEdgeMesh::from_poly(&poly)?, rows));
     }
     let layout = Layout::new(mesh, boundary);
-    let (positions, he_from) = points_and_faces(mesh, rules, &layout);
+    let positions = child_points(mesh, rules, &layout, &mesh.positions);
+    let he_from = layout.face_indices(mesh);
+    let rows = child_rows(mesh, rules, &layout, rows);
 
     let nh = mesh.num_half_edges();
     let mut cell_offsets = Vec::with_capacity(layout.num_child_cells(mesh) + 1);
@@ -337,14 +365,15 @@ pub fn child_mesh<R: CornerRules>(
         vertex_half_edges.extend_from_slice(&[at + 3, near_to_out]);
         vertex_offsets.push(vertex_half_edges.len() as u32);
     }
-    Ok(manifold_mesh(ManifoldParts {
+    let child = manifold_mesh(ManifoldParts {
         positions,
         cell_offsets,
         he_from,
         he_twin,
         vertex_offsets,
         vertex_half_edges,
-    }))
+    });
+    Ok((child, rows))
 }
 
 /// The twin of every child half-edge (itself on the boundary); each loop writes only the

@@ -12,3 +12,85 @@ pub mod pqq;
 pub mod ptq;
 pub mod quad_tri;
 pub mod sqrt3;
+
+use crate::mesh::HalfEdgeMesh;
+use crate::primvar::Primvar;
+use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules};
+
+/// What a level driver needs of a primal split whatever its rule set `R`: the per-level plumbing
+/// (new values, child faces, the parent of each child face for leaving out holes, the child mesh
+/// and its tags), written once in the driver for both splits.
+pub trait PrimalSplit<R> {
+    /// Corners of every child face.
+    const FACE_SIZE: usize;
+    /// True when a last level's faces can stay implicit in the parent ([`crate::Refined`]).
+    const IMPLICIT_FACES: bool;
+    /// The new values of `parent` (positions or other vertex-varying data) in child vertex order.
+    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P;
+    /// The child faces' vertex indices.
+    fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32>;
+    /// The parent cell of child face `f`.
+    fn parent_cell(mesh: &HalfEdgeMesh, f: usize) -> u32;
+    /// The child mesh, with `positions` from [`PrimalSplit::points`].
+    fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh;
+    /// The child level's sharpness and holes.
+    fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -> LevelTags;
+}
+
+/// The primal quad split ([`pqq`]).
+pub struct Pqq;
+
+/// The primal triangle split ([`ptq`]).
+pub struct Ptq;
+
+impl<R: QuadSplitRules> PrimalSplit<R> for Pqq {
+    const FACE_SIZE: usize = 4;
+    const IMPLICIT_FACES: bool = true;
+
+    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
+        pqq::refine_values(mesh, rules, parent)
+    }
+
+    fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
+        pqq::child_face_indices(mesh)
+    }
+
+    /// Child cell `h` comes from parent half-edge `h`'s cell.
+    fn parent_cell(mesh: &HalfEdgeMesh, f: usize) -> u32 {
+        mesh.cell_of(f as u32)
+    }
+
+    fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh {
+        pqq::child_mesh(mesh, positions)
+    }
+
+    fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -> LevelTags {
+        pqq::child_tags(mesh, child, tags)
+    }
+}
+
+impl<R: TriSplitRules> PrimalSplit<R> for Ptq {
+    const FACE_SIZE: usize = 3;
+    const IMPLICIT_FACES: bool = false;
+
+    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
+        ptq::refine_values(mesh, rules, parent)
+    }
+
+    fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
+        ptq::child_face_indices(mesh)
+    }
+
+    /// Child triangle `f` comes from parent triangle `f / 4`.
+    fn parent_cell(_: &HalfEdgeMesh, f: usize) -> u32 {
+        (f / 4) as u32
+    }
+
+    fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh {
+        ptq::child_mesh(mesh, positions)
+    }
+
+    fn child_tags(mesh: &HalfEdgeMesh, child: &HalfEdgeMesh, tags: &LevelTags) -> LevelTags {
+        ptq::child_tags(mesh, child, tags)
+    }
+}

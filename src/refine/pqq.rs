@@ -17,7 +17,7 @@
 //! entries of its own iteration.
 
 use crate::mesh::{quad_and_fan_chunks, HalfEdgeMesh};
-use crate::primvar::PointSum;
+use crate::primvar::Primvar;
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, QuadSplitRules};
 
@@ -32,19 +32,35 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
     mesh.num_vertices() + mesh.num_cells() + mesh.num_edges()
 }
 
-/// The new positions in child vertex order (`V + F + E` of them), computed by the host's stencil
-/// policy `rules`. Built by pushes rather than zeroed and overwritten, which on wasm saves a
-/// pass over the largest array.
+/// The new positions in child vertex order: [`refine_values`] of the mesh's positions.
 pub fn refine_points<R: QuadSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
+    refine_values(mesh, rules, &mesh.positions)
+}
+
+/// The new values in child vertex order (`V + F + E` of them), computed by the host's stencil
+/// policy `rules` from `parent` (the mesh's positions, or [`crate::primvar::Rows`] of other
+/// vertex-varying data). Built by pushes rather than zeroed and overwritten, which on wasm saves
+/// a pass over the largest array.
+pub fn refine_values<R: QuadSplitRules, P: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &P,
+) -> P {
     let (v, f, e) = (mesh.num_vertices() as u32, mesh.num_cells() as u32, mesh.num_edges() as u32);
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
-    let face_points: Vec<[f32; 3]> =
-        (0..f).map(|c| sum.eval(|w| rules.face_point(mesh, c, w))).collect();
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &face_points);
-    let mut points = Vec::with_capacity(num_child_vertices(mesh));
-    points.extend((0..v).map(|i| sum.eval(|w| rules.vertex_point(mesh, i, w))));
-    points.extend_from_slice(&face_points);
-    points.extend((0..e).map(|i| sum.eval(|w| rules.edge_point(mesh, i, w))));
+    let mut face_points = parent.with_capacity(f as usize);
+    let mut sum = parent.sum(&mesh.he_from, None);
+    for c in 0..f {
+        face_points.push(&mut sum, |w| rules.face_point(mesh, c, w));
+    }
+    let mut sum = parent.sum(&mesh.he_from, Some(&face_points));
+    let mut points = parent.with_capacity(num_child_vertices(mesh));
+    for i in 0..v {
+        points.push(&mut sum, |w| rules.vertex_point(mesh, i, w));
+    }
+    points.extend_from(&face_points);
+    for i in 0..e {
+        points.push(&mut sum, |w| rules.edge_point(mesh, i, w));
+    }
     points
 }
 

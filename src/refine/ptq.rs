@@ -15,7 +15,7 @@
 //! non-manifold inputs).
 
 use crate::mesh::HalfEdgeMesh;
-use crate::primvar::PointSum;
+use crate::primvar::Primvar;
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, TriSplitRules};
 
@@ -29,14 +29,27 @@ pub fn num_child_vertices(mesh: &HalfEdgeMesh) -> usize {
     mesh.num_vertices() + mesh.num_edges()
 }
 
-/// The new positions in child vertex order (`V + E` of them), built by pushes rather than zeroed
-/// and overwritten.
+/// The new positions in child vertex order: [`refine_values`] of the mesh's positions.
 pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f32; 3]> {
+    refine_values(mesh, rules, &mesh.positions)
+}
+
+/// The new values in child vertex order (`V + E` of them), computed by `rules` from `parent`
+/// (as [`super::pqq::refine_points`]), built by pushes rather than zeroed and overwritten.
+pub fn refine_values<R: TriSplitRules, P: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &P,
+) -> P {
     let (v, e) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
-    let mut points = Vec::with_capacity(num_child_vertices(mesh));
-    points.extend((0..v).map(|i| sum.eval(|w| rules.vertex_point(mesh, i, w))));
-    points.extend((0..e).map(|i| sum.eval(|w| rules.edge_point(mesh, i, w))));
+    let mut sum = parent.sum(&mesh.he_from, None);
+    let mut points = parent.with_capacity(num_child_vertices(mesh));
+    for i in 0..v {
+        points.push(&mut sum, |w| rules.vertex_point(mesh, i, w));
+    }
+    for i in 0..e {
+        points.push(&mut sum, |w| rules.edge_point(mesh, i, w));
+    }
     points
 }
 

@@ -8,8 +8,8 @@
 
 use super::ptq;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::primvar::PointSum;
-use crate::rules::MixedSplitRules;
+use crate::primvar::{Primvar, Rows};
+use crate::rules::{MixedSplitRules, Weights};
 
 /// Child `[vertices, faces]` of one level, from the parent counts and the number of triangles
 /// `tris` (whose half-edges number `3 tris`).
@@ -17,9 +17,49 @@ pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64, tris
     [vertices + (cells - tris) + edges, 4 * tris + (half_edges - 3 * tris)]
 }
 
+/// The new values from `parent` in child vertex order; `centroid_of[c]` is `u32::MAX` for
+/// triangles, whose face points the rules read but the child mesh does not have.
+fn points<R: MixedSplitRules, P: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &P,
+    centroid_of: &[u32],
+) -> P {
+    // Face points of every cell first (the rules read them), then the child values.
+    let mut face_points = parent.with_capacity(mesh.num_cells());
+    let mut sum = parent.sum(&mesh.he_from, None);
+    for c in 0..mesh.num_cells() as u32 {
+        face_points.push(&mut sum, |w| rules.face_point(mesh, c, w));
+    }
+    let mut points =
+        parent.with_capacity(mesh.num_vertices() + mesh.num_cells() + mesh.num_edges());
+    let mut sum = parent.sum(&mesh.he_from, Some(&face_points));
+    for v in 0..mesh.num_vertices() as u32 {
+        points.push(&mut sum, |w| rules.vertex_point(mesh, v, w));
+    }
+    for (c, &k) in centroid_of.iter().enumerate() {
+        if k != u32::MAX {
+            points.push(&mut sum, |w| w.face_point(c as u32, 1.0));
+        }
+    }
+    for e in 0..mesh.num_edges() as u32 {
+        points.push(&mut sum, |w| rules.edge_point(mesh, e, w));
+    }
+    points
+}
+
 /// One level: the child mesh as flat arrays, with positions from `rules`.
 pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
-    let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
+    refine_with(mesh, rules, &Rows::default()).0
+}
+
+/// [`refine`], and the child values of the vertex-varying `rows`.
+pub fn refine_with<R: MixedSplitRules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    rows: &Rows,
+) -> (PolyMesh, Rows) {
+    let (nv, nf) = (mesh.num_vertices(), mesh.num_cells());
     let size = |c: usize| mesh.cell_range(c).len();
     // Index of each cell's centroid among the centroids (u32::MAX for triangles).
     let mut centroid_of = vec![u32::MAX; nf];
@@ -35,28 +75,9 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
         }
     }
     let edge_base = (nv as u32) + centroids;
-    // Face points of every cell first (the rules read them), then the child positions.
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
-    let cell_points: Vec<[f32; 3]> =
-        (0..nf as u32).map(|c| sum.eval(|w| rules.face_point(mesh, c, w))).collect();
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &cell_points);
-    let mut positions = vec![0.0f32; 3 * (nv + centroids as usize + ne)];
-    {
-        let points = positions.as_chunks_mut::<3>().0;
-        let (old, rest) = points.split_at_mut(nv);
-        let (faces, edges) = rest.split_at_mut(centroids as usize);
-        for (v, p) in old.iter_mut().enumerate() {
-            *p = sum.eval(|w| rules.vertex_point(mesh, v as u32, w));
-        }
-        for (c, &k) in centroid_of.iter().enumerate() {
-            if k != u32::MAX {
-                faces[k as usize] = cell_points[c];
-            }
-        }
-        for (e, p) in edges.iter_mut().enumerate() {
-            *p = sum.eval(|w| rules.edge_point(mesh, e as u32, w));
-        }
-    }
+    let positions = points(mesh, rules, &mesh.positions, &centroid_of).into_flattened();
+    let rows =
+        if rows.is_empty() { Rows::default() } else { points(mesh, rules, rows, &centroid_of) };
     let mut indices = Vec::with_capacity(num_indices);
     let mut face_sizes = Vec::with_capacity(num_faces);
     for (c, &k) in centroid_of.iter().enumerate() {
@@ -81,5 +102,5 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
             face_sizes.extend(std::iter::repeat_n(4, n));
         }
     }
-    PolyMesh { positions, indices, face_sizes }
+    (PolyMesh { positions, indices, face_sizes }, rows)
 }

@@ -35,7 +35,7 @@
 use super::dqq;
 use crate::error::Result;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::primvar::PointSum;
+use crate::primvar::{Primvar, Rows};
 use crate::rules::Sqrt3Rules;
 
 const NONE: u32 = u32::MAX;
@@ -102,57 +102,74 @@ fn first_child_vertices(mesh: &HalfEdgeMesh, split: &[u32]) -> (Vec<u32>, usize)
     (first, next_pair as usize)
 }
 
-/// Writes the child points, in child vertex order, into `points`.
-fn child_points<R: Sqrt3Rules>(
+/// The child values from `parent`, in child vertex order.
+fn child_points<R: Sqrt3Rules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     refine_boundary: bool,
-    split: &[u32],
-    first: &[u32],
-    points: &mut [[f32; 3]],
-) {
-    let (old, new) = points.split_at_mut(mesh.num_vertices());
-    let mut sum = PointSum::new(&mesh.positions, &mesh.he_from, &[]);
-    for (v, p) in old.iter_mut().enumerate() {
-        *p = sum.eval(|w| rules.vertex_point(mesh, v as u32, refine_boundary, w));
+    (split, first, count): (&[u32], &[u32], usize),
+    parent: &P,
+) -> P {
+    let mut points = parent.with_capacity(count);
+    let mut sum = parent.sum(&mesh.he_from, None);
+    for v in 0..mesh.num_vertices() as u32 {
+        points.push(&mut sum, |w| rules.vertex_point(mesh, v, refine_boundary, w));
     }
+    points.extend_zeroed(count - mesh.num_vertices());
     // Each cell writes its own one or two slots.
-    let base = mesh.num_vertices();
     for (c, (&b, &slot)) in split.iter().zip(first).enumerate() {
-        let at = slot as usize - base;
+        let at = slot as usize;
+        if at >= count {
+            continue;
+        }
         if b == NONE {
-            if let Some(p) = new.get_mut(at) {
-                *p = sum.eval(|w| rules.face_point(mesh, c as u32, w));
-            }
-        } else if let Some(pair) = new.get_mut(at..at + 2) {
-            for (near, p) in pair.iter_mut().enumerate() {
-                *p = sum.eval(|w| rules.boundary_point(mesh, b, near, w));
+            points.set(at, &mut sum, |w| rules.face_point(mesh, c as u32, w));
+        } else {
+            for near in 0..2 {
+                points.set(at + near, &mut sum, |w| rules.boundary_point(mesh, b, near, w));
             }
         }
     }
+    points
 }
 
 /// One √3 level: the child mesh as flat arrays. `refine_boundary` splits boundary edges (every
 /// second level of a run, as Kobbelt and CGAL do).
 pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bool) -> PolyMesh {
-    let split = split_half_edges(mesh, refine_boundary);
-    let (positions, indices) = points_and_faces(mesh, rules, refine_boundary, &split);
-    let face_sizes = vec![3; mesh.num_half_edges()];
-    PolyMesh { positions: positions.into_flattened(), indices, face_sizes }
+    refine_with(mesh, rules, refine_boundary, &Rows::default()).0
 }
 
-/// The child positions and face list of one √3 level, shared by both outputs.
+/// [`refine`], and the child values of the vertex-varying `rows`.
+pub fn refine_with<R: Sqrt3Rules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    refine_boundary: bool,
+    rows: &Rows,
+) -> (PolyMesh, Rows) {
+    let split = split_half_edges(mesh, refine_boundary);
+    let (positions, indices, rows) = points_and_faces(mesh, rules, refine_boundary, &split, rows);
+    let face_sizes = vec![3; mesh.num_half_edges()];
+    (PolyMesh { positions: positions.into_flattened(), indices, face_sizes }, rows)
+}
+
+/// The child positions, face list and rows of one √3 level, shared by both outputs.
 fn points_and_faces<R: Sqrt3Rules>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     refine_boundary: bool,
     split: &[u32],
-) -> (Vec<[f32; 3]>, Vec<u32>) {
+    rows: &Rows,
+) -> (Vec<[f32; 3]>, Vec<u32>, Rows) {
     let (first, num_child_vertices) = first_child_vertices(mesh, split);
-    let mut positions = vec![[0.0f32; 3]; num_child_vertices];
-    child_points(mesh, rules, refine_boundary, split, &first, &mut positions);
+    let layout = (split, &first[..], num_child_vertices);
+    let positions = child_points(mesh, rules, refine_boundary, layout, &mesh.positions);
+    let rows = if rows.is_empty() {
+        Rows::default()
+    } else {
+        child_points(mesh, rules, refine_boundary, layout, rows)
+    };
     let indices = child_face_indices(mesh, split, &first);
-    (positions, indices)
+    (positions, indices, rows)
 }
 
 /// One √3 level as a half-edge mesh, equal to `HalfEdgeMesh::from_poly(&refine(..))` but
@@ -168,13 +185,24 @@ pub fn child_mesh<R: Sqrt3Rules>(
     rules: &R,
     refine_boundary: bool,
 ) -> Result<HalfEdgeMesh> {
+    child_mesh_with(mesh, rules, refine_boundary, &Rows::default()).map(|(child, _)| child)
+}
+
+/// [`child_mesh`], and the child values of the vertex-varying `rows`.
+pub fn child_mesh_with<R: Sqrt3Rules>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    refine_boundary: bool,
+    rows: &Rows,
+) -> Result<(HalfEdgeMesh, Rows)> {
     let nh = mesh.num_half_edges();
     let triangles = nh == 3 * mesh.num_cells();
     if mesh.is_non_manifold() || !triangles || nh == 0 || has_pillow(mesh) {
-        return HalfEdgeMesh::from_poly(&refine(mesh, rules, refine_boundary));
+        let (poly, rows) = refine_with(mesh, rules, refine_boundary, rows);
+        return Ok((HalfEdgeMesh::from_poly(&poly)?, rows));
     }
     let split = split_half_edges(mesh, refine_boundary);
-    let (positions, he_from) = points_and_faces(mesh, rules, refine_boundary, &split);
+    let (positions, he_from, rows) = points_and_faces(mesh, rules, refine_boundary, &split, rows);
     let num_child_vertices = positions.len();
     let cell_offsets = (0..=nh as u32).map(|c| 3 * c).collect();
 
@@ -232,14 +260,15 @@ pub fn child_mesh<R: Sqrt3Rules>(
     }
     debug_assert_eq!(out.len(), 3 * nh);
     let he_twin = child_twins(mesh, &split);
-    Ok(dqq::manifold_mesh(dqq::ManifoldParts {
+    let child = dqq::manifold_mesh(dqq::ManifoldParts {
         positions,
         cell_offsets,
         he_from,
         he_twin,
         vertex_offsets,
         vertex_half_edges: out,
-    }))
+    });
+    Ok((child, rows))
 }
 
 /// Triangles only: the next and previous half-edges in a cell, by arithmetic.

@@ -1,0 +1,243 @@
+//! Vertex-varying attributes: every scheme refines them with the same weights as the positions.
+//!
+//! The rules are affine (their weights sum to 1), so a channel that holds an affine function
+//! `A p + b` of the positions must come out as the same function of the refined positions, at
+//! every level, through creases, holes and lists of schemes. That is a closed-form expectation
+//! that needs no reference implementation; it fails if a rule gives a channel other weights than
+//! the positions, or weights that do not sum to 1.
+
+mod common;
+
+use common::sample_meshes;
+use subsurf::attributes::Attribute;
+use subsurf::scheme::{subdivide_with_attributes, subdivide_with_tags};
+use subsurf::shapes::{cube, grid};
+use subsurf::{Crease, Error, Options, PolyMesh, Scheme, Tags};
+
+/// A 4-component affine function of a position, and a 1-component one.
+fn affine4(p: &[f32]) -> [f32; 4] {
+    let [x, y, z] = [p[0], p[1], p[2]];
+    [0.5 * x - 2.0 * y + 0.25 * z + 3.0, x + y + z, -1.5 * z + 0.125, 2.0 * x - 0.75 * y + 7.0]
+}
+
+fn affine1(p: &[f32]) -> f32 {
+    3.0 * p[0] - 0.5 * p[1] + 2.0 * p[2] - 1.0
+}
+
+fn channels(mesh: &PolyMesh) -> Vec<Attribute> {
+    let points = mesh.positions.chunks_exact(3);
+    let four: Vec<f32> = points.clone().flat_map(affine4).collect();
+    let one: Vec<f32> = points.map(affine1).collect();
+    let constant = [0.25f32, -4.0].repeat(mesh.num_vertices());
+    vec![
+        Attribute::vertex("four", 4, four),
+        Attribute::vertex("one", 1, one),
+        Attribute::vertex("constant", 2, constant),
+    ]
+}
+
+/// Checks the refined channels against the refined positions; `what` names the case.
+fn check(out: &PolyMesh, attributes: &[Attribute], what: &str) {
+    assert_eq!(attributes.len(), 3, "{what}");
+    let scale = out.positions.iter().fold(1.0f32, |m, x| m.max(x.abs()));
+    let tolerance = 1e-5 * 8.0 * scale;
+    for (v, p) in out.positions.chunks_exact(3).enumerate() {
+        let four = &attributes[0].values[4 * v..4 * v + 4];
+        for (k, (got, want)) in four.iter().zip(affine4(p)).enumerate() {
+            assert!(
+                (got - want).abs() <= tolerance,
+                "{what}: vertex {v} four[{k}] {got} vs {want}"
+            );
+        }
+        let (got, want) = (attributes[1].values[v], affine1(p));
+        assert!((got - want).abs() <= tolerance, "{what}: vertex {v} one {got} vs {want}");
+        let constant = &attributes[2].values[2 * v..2 * v + 2];
+        assert!(
+            (constant[0] - 0.25).abs() < 1e-6 && (constant[1] + 4.0).abs() < 1e-5,
+            "{what}: vertex {v} constant {constant:?}"
+        );
+    }
+    for a in attributes {
+        assert_eq!(a.len(), out.num_vertices(), "{what}: {}", a.name);
+    }
+}
+
+fn input_for(scheme: Scheme, mesh: &PolyMesh) -> Option<PolyMesh> {
+    let triangles = mesh.face_sizes.iter().all(|&n| n == 3);
+    (!scheme.triangles_only() || triangles).then(|| mesh.clone())
+}
+
+#[test]
+fn affine_channels_follow_the_positions_in_every_scheme() {
+    let mut checked = 0;
+    for (name, mesh) in sample_meshes() {
+        for &scheme in Scheme::ALL {
+            let Some(mesh) = input_for(scheme, &mesh) else { continue };
+            for levels in 1..=3 {
+                let options = Options::new(scheme, levels);
+                let what = format!("{name} {scheme} L{levels}");
+                let (out, attributes) =
+                    subdivide_with_attributes(&mesh, &channels(&mesh), &options, &Tags::default())
+                        .unwrap_or_else(|e| panic!("{what}: {e}"));
+                check(&out, &attributes, &what);
+                // The positions are those of a call without attributes, bit for bit.
+                let plain = subdivide_with_tags(&mesh, &options, &Tags::default()).unwrap();
+                assert_eq!(plain, out, "{what}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}
+
+/// Every boundary mode moves boundary vertices by its own rule; the channels follow.
+#[test]
+fn affine_channels_follow_every_boundary_mode() {
+    for &boundary in subsurf::Boundary::ALL {
+        for (scheme, mesh) in [
+            (Scheme::CatmullClark, grid(4, 3)),
+            (Scheme::Loop, subsurf::shapes::triangulate_quads(&grid(4, 3))),
+            (Scheme::DooSabin, grid(4, 3)),
+        ] {
+            let options = Options::new(scheme, 2).with_boundary(boundary);
+            let what = format!("{scheme} boundary {boundary}");
+            let (out, attributes) =
+                subdivide_with_attributes(&mesh, &channels(&mesh), &options, &Tags::default())
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+            check(&out, &attributes, &what);
+        }
+    }
+}
+
+/// Semi-sharp and sharp creases, a corner and a hole change the weights (transitions blend two
+/// rules); the channels still follow.
+#[test]
+fn affine_channels_follow_creases_corners_and_holes() {
+    let mesh = grid(5, 4);
+    let creases =
+        (0..4u32).map(|i| Crease { vertices: [6 + i, 7 + i], sharpness: 0.5 + i as f32 }).collect();
+    let tags = Tags {
+        creases,
+        corners: vec![subsurf::Corner { vertex: 14, sharpness: 2.5 }],
+        holes: vec![0],
+        ..Tags::default()
+    };
+    for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
+        for levels in 1..=3 {
+            let options = Options::new(scheme, levels);
+            let what = format!("tagged {scheme} L{levels}");
+            let (out, attributes) =
+                subdivide_with_attributes(&mesh, &channels(&mesh), &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+            check(&out, &attributes, &what);
+        }
+    }
+    let tris = subsurf::shapes::triangulate_quads(&mesh);
+    for levels in 1..=3 {
+        let options = Options::new(Scheme::Loop, levels);
+        let (out, attributes) =
+            subdivide_with_attributes(&tris, &channels(&tris), &options, &tags).unwrap();
+        check(&out, &attributes, &format!("tagged loop L{levels}"));
+    }
+}
+
+/// A list of schemes, one per level, carries the channels from host to host.
+#[test]
+fn affine_channels_follow_a_list_of_schemes() {
+    let tris = subsurf::shapes::triangulate_quads(&cube());
+    let lists: [&[Scheme]; 4] = [
+        &[Scheme::QuadTriangle, Scheme::CatmullClark, Scheme::DooSabin],
+        &[Scheme::Loop, Scheme::Sqrt3, Scheme::Sqrt3, Scheme::Midpoint],
+        &[Scheme::Bilinear, Scheme::CatmullClark],
+        &[Scheme::Sqrt3, Scheme::Loop, Scheme::QuadTriangle],
+    ];
+    for schemes in lists {
+        let options = Options { schemes: schemes.to_vec(), ..Options::default() };
+        let what = format!("{schemes:?}");
+        let (out, attributes) =
+            subdivide_with_attributes(&tris, &channels(&tris), &options, &Tags::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+        check(&out, &attributes, &what);
+    }
+}
+
+/// Zero levels give the channels back unchanged; no channel gives no channel.
+#[test]
+fn zero_levels_and_no_channels() {
+    let mesh = cube();
+    let given = channels(&mesh);
+    let options = Options { schemes: vec![], ..Options::default() };
+    let (out, attributes) =
+        subdivide_with_attributes(&mesh, &given, &options, &Tags::default()).unwrap();
+    assert_eq!(out, mesh);
+    assert_eq!(attributes, given);
+    let (_, none) =
+        subdivide_with_attributes(&mesh, &[], &Options::new(Scheme::Loop, 0), &Tags::default())
+            .unwrap();
+    assert!(none.is_empty());
+}
+
+fn error(attributes: Vec<Attribute>) -> String {
+    let mesh = cube();
+    match subdivide_with_attributes(&mesh, &attributes, &Options::default(), &Tags::default()) {
+        Err(e @ (Error::InvalidAttribute(_) | Error::Unsupported(_))) => e.to_string(),
+        other => panic!("expected an attribute error, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_channels_are_errors_naming_the_channel() {
+    let ok = || Attribute::vertex("color", 3, vec![0.5; 24]);
+    let cases: Vec<(Attribute, &[&str])> = vec![
+        (Attribute::vertex("color", 3, vec![0.5; 21]), &["'color'", "7 values", "8 vertices"]),
+        (
+            Attribute::vertex("color", 3, vec![0.5; 23]),
+            &["'color'", "23 values", "multiple of itemSize 3"],
+        ),
+        (Attribute::vertex("w", 0, vec![]), &["'w'", "itemSize is 0", "1 to 16"]),
+        (Attribute::vertex("w", 17, vec![0.0; 17 * 8]), &["'w'", "itemSize is 17"]),
+        (
+            Attribute { values: [vec![0.5; 10], vec![f32::NAN], vec![0.5; 13]].concat(), ..ok() },
+            &["'color'", "value 3 has component 1 = NaN", "finite"],
+        ),
+        (
+            Attribute {
+                values: [vec![0.5; 4], vec![f32::INFINITY], vec![0.5; 19]].concat(),
+                ..ok()
+            },
+            &["'color'", "value 1 has component 1 = inf"],
+        ),
+        (
+            Attribute::face_varying("uv", 2, vec![0.0; 8], vec![0; 23]),
+            &["'uv'", "23 indices", "24 face corners"],
+        ),
+        (
+            Attribute::face_varying("uv", 2, vec![0.0; 8], [vec![0; 23], vec![4]].concat()),
+            &["'uv'", "index 23 is 4", "4 values (0..3)"],
+        ),
+    ];
+    for (attribute, fragments) in cases {
+        let message = error(vec![attribute]);
+        for f in fragments {
+            assert!(message.contains(f), "{message:?} lacks {f:?}");
+        }
+    }
+    let message = error(vec![ok(), ok()]);
+    assert!(message.contains("'color'") && message.contains("twice"), "{message}");
+}
+
+/// The caller's arrays are only read.
+#[test]
+fn inputs_are_not_modified() {
+    let mesh = cube();
+    let given = channels(&mesh);
+    let copy = given.clone();
+    let _ = subdivide_with_attributes(
+        &mesh,
+        &given,
+        &Options::new(Scheme::CatmullClark, 2),
+        &Tags::default(),
+    )
+    .unwrap();
+    assert_eq!(given, copy);
+}
