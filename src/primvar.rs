@@ -22,9 +22,10 @@ impl<'a> PointSum<'a> {
     /// The point whose weights `rule` gives.
     #[inline(always)]
     pub fn eval(&mut self, rule: impl FnOnce(&mut Self)) -> [f32; 3] {
-        self.sum = Vec3::ZERO;
-        rule(self);
-        self.sum.to_array()
+        // A fresh local sum, which the optimiser keeps in registers.
+        let mut local = PointSum { sum: Vec3::ZERO, ..*self };
+        rule(&mut local);
+        local.sum.to_array()
     }
 }
 
@@ -43,6 +44,19 @@ impl Weights for PointSum<'_> {
     fn face_point(&mut self, c: u32, weight: f32) {
         self.sum += Vec3::from_array(self.face_points[c as usize]) * weight;
     }
+
+    /// The sum before the group.
+    type Group = Vec3;
+
+    #[inline(always)]
+    fn begin_group(&mut self) -> Vec3 {
+        std::mem::replace(&mut self.sum, Vec3::ZERO)
+    }
+
+    #[inline(always)]
+    fn end_group(&mut self, outer: Vec3, scale: f32) {
+        self.sum = outer + self.sum * scale;
+    }
 }
 
 /// Sums weighted rows of `width` floats per vertex (every vertex-varying channel side by side):
@@ -54,11 +68,13 @@ pub struct RowSum<'a> {
     pub he_from: &'a [u32],
     pub face_rows: &'a [f32],
     pub sum: Vec<f32>,
+    /// The sums of enclosing [`Weights::scaled`] groups, one row each.
+    outer: Vec<f32>,
 }
 
 impl<'a> RowSum<'a> {
     pub fn new(rows: &'a [f32], width: usize, he_from: &'a [u32], face_rows: &'a [f32]) -> Self {
-        RowSum { rows, width, he_from, face_rows, sum: vec![0.0; width] }
+        RowSum { rows, width, he_from, face_rows, sum: vec![0.0; width], outer: Vec::new() }
     }
 
     /// Appends to `out` the row whose weights `rule` gives.
@@ -93,6 +109,26 @@ impl Weights for RowSum<'_> {
     fn face_point(&mut self, c: u32, weight: f32) {
         let start = c as usize * self.width;
         Self::add(&mut self.sum, &self.face_rows[start..start + self.width], weight);
+    }
+
+    /// Where the sum before the group is kept in `outer`.
+    type Group = usize;
+
+    #[inline]
+    fn begin_group(&mut self) -> usize {
+        let depth = self.outer.len();
+        self.outer.extend_from_slice(&self.sum);
+        self.sum.fill(0.0);
+        depth
+    }
+
+    #[inline]
+    fn end_group(&mut self, depth: usize, scale: f32) {
+        let outer = &self.outer[depth..];
+        for (s, &o) in self.sum.iter_mut().zip(outer) {
+            *s = o + *s * scale;
+        }
+        self.outer.truncate(depth);
     }
 }
 
@@ -131,6 +167,19 @@ pub trait Primvar: Sized {
     fn with_capacity(&self, capacity: usize) -> Self;
     /// Appends the value whose weights `rule` gives.
     fn push<'a>(&mut self, sum: &mut Self::Sum<'a>, rule: impl FnOnce(&mut Self::Sum<'a>));
+    /// Appends `count` values, value `i` the one whose weights `rule(i, _)` gives. (One call
+    /// per run of values lets positions be collected from an exact-size iterator, without a
+    /// capacity check per value.)
+    fn extend_with<'a>(
+        &mut self,
+        count: u32,
+        sum: &mut Self::Sum<'a>,
+        mut rule: impl FnMut(u32, &mut Self::Sum<'a>),
+    ) {
+        for i in 0..count {
+            self.push(sum, |w| rule(i, w));
+        }
+    }
     /// Appends every value of `other`.
     fn extend_from(&mut self, other: &Self);
     /// Appends `count` zero values, to be placed later with [`Primvar::set`].
@@ -154,6 +203,16 @@ impl Primvar for Vec<[f32; 3]> {
     #[inline(always)]
     fn push<'a>(&mut self, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
         self.push(sum.eval(rule));
+    }
+
+    #[inline(always)]
+    fn extend_with<'a>(
+        &mut self,
+        count: u32,
+        sum: &mut PointSum<'a>,
+        mut rule: impl FnMut(u32, &mut PointSum<'a>),
+    ) {
+        self.extend((0..count).map(|i| sum.eval(|w| rule(i, w))));
     }
 
     fn extend_from(&mut self, other: &Self) {

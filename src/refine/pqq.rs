@@ -49,18 +49,12 @@ pub fn refine_values<R: QuadSplitRules, P: Primvar>(
     let (v, f, e) = (mesh.num_vertices() as u32, mesh.num_cells() as u32, mesh.num_edges() as u32);
     let mut face_points = parent.with_capacity(f as usize);
     let mut sum = parent.sum(&mesh.he_from, None);
-    for c in 0..f {
-        face_points.push(&mut sum, |w| rules.face_point(mesh, c, w));
-    }
+    face_points.extend_with(f, &mut sum, |c, w| rules.face_point(mesh, c, w));
     let mut sum = parent.sum(&mesh.he_from, Some(&face_points));
     let mut points = parent.with_capacity(num_child_vertices(mesh));
-    for i in 0..v {
-        points.push(&mut sum, |w| rules.vertex_point(mesh, i, w));
-    }
+    points.extend_with(v, &mut sum, |i, w| rules.vertex_point(mesh, i, w));
     points.extend_from(&face_points);
-    for i in 0..e {
-        points.push(&mut sum, |w| rules.edge_point(mesh, i, w));
-    }
+    points.extend_with(e, &mut sum, |i, w| rules.edge_point(mesh, i, w));
     points
 }
 

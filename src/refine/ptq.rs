@@ -44,12 +44,8 @@ pub fn refine_values<R: TriSplitRules, P: Primvar>(
     let (v, e) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
     let mut sum = parent.sum(&mesh.he_from, None);
     let mut points = parent.with_capacity(num_child_vertices(mesh));
-    for i in 0..v {
-        points.push(&mut sum, |w| rules.vertex_point(mesh, i, w));
-    }
-    for i in 0..e {
-        points.push(&mut sum, |w| rules.edge_point(mesh, i, w));
-    }
+    points.extend_with(v, &mut sum, |i, w| rules.vertex_point(mesh, i, w));
+    points.extend_with(e, &mut sum, |i, w| rules.edge_point(mesh, i, w));
     points
 }
 

@@ -32,13 +32,12 @@ pub struct CatmullClark {
     pub boundary: Boundary,
 }
 
-/// The smooth vertex mask of valence `n`: weights on the vertex, on each neighbour and on each
-/// face point.
+/// The smooth vertex mask of valence `n`: the weight on the vertex, and the weight on each
+/// neighbour and on each face point (the same).
 #[inline]
-fn smooth_vertex_mask(n: u32) -> [f32; 3] {
+fn smooth_vertex_mask(n: u32) -> [f32; 2] {
     let n = n as f32;
-    let k = 1.0 / (n * n);
-    [(n - 2.0) / n, k, k]
+    [(n - 2.0) / n, 1.0 / (n * n)]
 }
 
 impl QuadSplitRules for CatmullClark {
@@ -52,10 +51,12 @@ impl QuadSplitRules for CatmullClark {
         match smooth_edge(mesh, edge) {
             Some([h0, h1]) => {
                 let [a, b] = mesh.edge_vertices[edge as usize];
-                w.vertex(a, 0.25);
-                w.vertex(b, 0.25);
-                w.face_point(mesh.cell_of(h0), 0.25);
-                w.face_point(mesh.cell_of(h1), 0.25);
+                w.scaled(0.25, |w| {
+                    w.vertex(a, 1.0);
+                    w.vertex(b, 1.0);
+                    w.face_point(mesh.cell_of(h0), 1.0);
+                    w.face_point(mesh.cell_of(h1), 1.0);
+                });
             }
             None => edge_midpoint(mesh, edge, w),
         }
@@ -70,10 +71,10 @@ impl QuadSplitRules for CatmullClark {
         if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
             return;
         }
-        let [center, edge, face] = smooth_vertex_mask(ring.faces);
+        let [center, ring_weight] = smooth_vertex_mask(ring.faces);
         // The small weights first: summed before the large one, their rounding stays small
         // at high valence (catmark_pole360).
-        one_ring(mesh, vertex, &ring, edge, face, w);
+        one_ring(mesh, vertex, &ring, ring_weight, true, w);
         w.vertex(vertex, center);
     }
 }
@@ -116,13 +117,15 @@ impl QuadSplitRules for CreasedCatmullClark<'_> {
         };
         let face_weight = creased_edge_point(mesh, self.tags, edge, vertex_weight, face_weight, w);
         if face_weight != 0.0 {
-            w.face_point(c0, face_weight);
-            w.face_point(c1, face_weight);
+            w.scaled(face_weight, |w| {
+                w.face_point(c0, 1.0);
+                w.face_point(c1, 1.0);
+            });
         }
     }
 
     #[inline]
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
-        creased_vertex_point(mesh, self.tags, self.boundary, vertex, smooth_vertex_mask, w)
+        creased_vertex_point(mesh, self.tags, self.boundary, vertex, (smooth_vertex_mask, true), w)
     }
 }

@@ -467,16 +467,16 @@ fn walk_fan(mesh: &HalfEdgeMesh, vertex: u32, mut visit: impl FnMut(u32, u32)) -
     None
 }
 
-/// The weights of `vertex`'s new position under the crease rules. `smooth_mask(n)` is the
-/// scheme's smooth vertex mask for `n` faces: the weights on the vertex, on each neighbour and
-/// on each face point (0 for the triangle split, which has none). See the module docs.
+/// The weights of `vertex`'s new position under the crease rules. `smooth.0(n)` is the scheme's
+/// smooth vertex mask for `n` faces: the weight on the vertex and on each neighbour, and with
+/// `smooth.1` on each face point too (Catmull-Clark). See the module docs.
 #[inline]
 pub(crate) fn creased_vertex_point<W: Weights>(
     mesh: &HalfEdgeMesh,
     tags: &LevelTags,
     boundary: Boundary,
     vertex: u32,
-    smooth_mask: impl Fn(u32) -> [f32; 3],
+    (smooth_mask, faces): (impl Fn(u32) -> [f32; 2], bool),
     w: &mut W,
 ) {
     let out = mesh.out_half_edges(vertex);
@@ -511,9 +511,9 @@ pub(crate) fn creased_vertex_point<W: Weights>(
     // (boundary and non-manifold edges are sharp), so its outgoing half-edges reach every edge.
     let smooth = |scale: f32, w: &mut W| match fan(mesh, vertex) {
         Some(ring) => {
-            let [center, edge, face] = smooth_mask(ring.faces);
+            let [center, ring_weight] = smooth_mask(ring.faces);
             let mut scaled = Scaled { inner: w, scale };
-            one_ring(mesh, vertex, &ring, edge, face, &mut scaled);
+            one_ring(mesh, vertex, &ring, ring_weight, faces, &mut scaled);
             scaled.vertex(vertex, center);
         }
         None => w.vertex(vertex, scale),
@@ -549,9 +549,11 @@ pub(crate) fn creased_vertex_point<W: Weights>(
         return w.vertex(vertex, 1.0); // several fans: a corner
     }
     let crease = |[a, b]: [u32; 2], scale: f32, w: &mut W| {
+        w.scaled(0.125 * scale, |w| {
+            w.corner(a, 1.0);
+            w.corner(b, 1.0);
+        });
         w.vertex(vertex, 0.75 * scale);
-        w.corner(a, 0.125 * scale);
-        w.corner(b, 0.125 * scale);
     };
     let (mut decayed_sum, mut decayed) = (counts.decayed_sum, counts.decayed as u32);
     if vertex_sharpness > 0.0 && child_vertex_sharpness <= 0.0 {
@@ -617,8 +619,6 @@ pub(crate) fn creased_edge_point(
     } else {
         (s * 0.5 + (1.0 - s) * vertex_weight, (1.0 - s) * face_weight)
     };
-    let [a, b] = mesh.edge_vertices[edge as usize];
-    w.vertex(a, vertex_weight);
-    w.vertex(b, vertex_weight);
+    super::edge_ends(mesh, edge, vertex_weight, w);
     face_weight
 }

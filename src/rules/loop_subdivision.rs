@@ -11,7 +11,9 @@
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
 use super::Weights;
-use super::{boundary_vertex_rule, edge_midpoint, one_ring, ring, smooth_edge, TriSplitRules};
+use super::{
+    boundary_vertex_rule, edge_ends, edge_midpoint, one_ring, ring, smooth_edge, TriSplitRules,
+};
 use crate::mesh::HalfEdgeMesh;
 use crate::options::Boundary;
 
@@ -28,12 +30,12 @@ pub fn loop_beta(n: u32) -> f32 {
     ((0.625 - c * c) / n) as f32
 }
 
-/// The smooth vertex mask of valence `n`: weights on the vertex and on each neighbour (and none
-/// on face points, which the triangle split does not have).
+/// The smooth vertex mask of valence `n`: weights on the vertex and on each neighbour (the
+/// triangle split has no face points).
 #[inline]
-fn smooth_vertex_mask(n: u32) -> [f32; 3] {
+fn smooth_vertex_mask(n: u32) -> [f32; 2] {
     let beta = loop_beta(n);
-    [1.0 - n as f32 * beta, beta, 0.0]
+    [1.0 - n as f32 * beta, beta]
 }
 
 /// The corner of `h`'s triangle opposite its edge, as a corner (see [`Weights::corner`]).
@@ -47,11 +49,11 @@ impl TriSplitRules for Loop {
     fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
         match smooth_edge(mesh, edge) {
             Some([h0, h1]) => {
-                let [a, b] = mesh.edge_vertices[edge as usize];
-                w.vertex(a, 0.375);
-                w.vertex(b, 0.375);
-                w.corner(opposite(mesh, h0), 0.125);
-                w.corner(opposite(mesh, h1), 0.125);
+                w.scaled(0.125, |w| {
+                    w.corner(opposite(mesh, h0), 1.0);
+                    w.corner(opposite(mesh, h1), 1.0);
+                });
+                edge_ends(mesh, edge, 0.375, w);
             }
             None => edge_midpoint(mesh, edge, w),
         }
@@ -66,8 +68,8 @@ impl TriSplitRules for Loop {
         if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
             return;
         }
-        let [center, edge, _] = smooth_vertex_mask(ring.valence);
-        one_ring(mesh, vertex, &ring, edge, 0.0, w);
+        let [center, edge] = smooth_vertex_mask(ring.valence);
+        one_ring(mesh, vertex, &ring, edge, false, w);
         w.vertex(vertex, center);
     }
 }
@@ -88,13 +90,15 @@ impl TriSplitRules for CreasedLoop<'_> {
         };
         let far = creased_edge_point(mesh, self.tags, edge, 0.375, 0.125, w);
         if far != 0.0 {
-            w.corner(opposite(mesh, h0), far);
-            w.corner(opposite(mesh, h1), far);
+            w.scaled(far, |w| {
+                w.corner(opposite(mesh, h0), 1.0);
+                w.corner(opposite(mesh, h1), 1.0);
+            });
         }
     }
 
     #[inline]
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
-        creased_vertex_point(mesh, self.tags, self.boundary, vertex, smooth_vertex_mask, w)
+        creased_vertex_point(mesh, self.tags, self.boundary, vertex, (smooth_vertex_mask, false), w)
     }
 }

@@ -87,18 +87,28 @@ pub trait CornerRules {
 #[inline(always)]
 pub fn centroid(mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
     let range = mesh.cell_range(cell as usize);
-    let weight = 1.0 / range.len() as f32;
+    let scale = 1.0 / range.len() as f32;
+    let group = w.begin_group();
     for h in range {
-        w.corner(h as u32, weight);
+        w.corner(h as u32, 1.0);
     }
+    w.end_group(group, scale);
+}
+
+/// `weight` on each end of an edge.
+#[inline(always)]
+pub fn edge_ends(mesh: &HalfEdgeMesh, edge: u32, weight: f32, w: &mut impl Weights) {
+    let [a, b] = mesh.edge_vertices[edge as usize];
+    w.scaled(weight, |w| {
+        w.vertex(a, 1.0);
+        w.vertex(b, 1.0);
+    });
 }
 
 /// The midpoint of an edge.
 #[inline]
 pub fn edge_midpoint(mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
-    let [a, b] = mesh.edge_vertices[edge as usize];
-    w.vertex(a, 0.5);
-    w.vertex(b, 0.5);
+    edge_ends(mesh, edge, 0.5, w)
 }
 
 /// What a vertex's one-ring looks like: counts only, gathered once and shared by the primal
@@ -125,7 +135,7 @@ fn incoming_boundary(mesh: &HalfEdgeMesh, h: u32) -> Option<u32> {
 }
 
 /// Counts the one-ring of `vertex`.
-#[inline]
+#[inline(always)]
 pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32) -> Ring {
     let out = mesh.out_half_edges(vertex);
     // With manifold edges, every open fan at a vertex starts with an outgoing boundary
@@ -149,28 +159,48 @@ pub(crate) fn ring(mesh: &HalfEdgeMesh, vertex: u32) -> Ring {
     r
 }
 
-/// Weights every member of `vertex`'s one-ring: `edge_weight` on the other end of each
-/// incident edge (the to-vertex of each outgoing half-edge, and the from-vertex of each incoming
-/// boundary half-edge) and `face_weight` on the face point of each incident face (none when it
-/// is 0: the triangle splits have no face points).
+/// Weights every member of `vertex`'s one-ring by `weight`: the other end of each incident
+/// edge (the to-vertex of each outgoing half-edge, and the from-vertex of each incoming boundary
+/// half-edge), and with `faces` (Catmull-Clark's smooth rule, which weights neighbours and face
+/// points alike) the face point of each incident face too. One group, so a summing sink scales
+/// the ring's sum once.
 #[inline(always)]
 pub(crate) fn one_ring(
     mesh: &HalfEdgeMesh,
     vertex: u32,
     ring: &Ring,
-    edge_weight: f32,
-    face_weight: f32,
+    weight: f32,
+    faces: bool,
     w: &mut impl Weights,
 ) {
-    let faces = face_weight != 0.0;
-    for &h in mesh.out_half_edges(vertex) {
-        if faces {
-            w.face_point(mesh.cell_of(h), face_weight);
+    let out = mesh.out_half_edges(vertex);
+    let group = w.begin_group();
+    // One loop per case, so that the common ones (interior) test nothing per face.
+    match (ring.interior, faces) {
+        (true, true) => ring_members::<true, true>(mesh, out, w),
+        (true, false) => ring_members::<true, false>(mesh, out, w),
+        (false, true) => ring_members::<false, true>(mesh, out, w),
+        (false, false) => ring_members::<false, false>(mesh, out, w),
+    }
+    w.end_group(group, weight);
+}
+
+/// Weight 1 on the other end of each edge at the vertex whose outgoing half-edges are `out`
+/// (only outgoing ones when `INTERIOR`), and with `FACES` on each face point too.
+#[inline(always)]
+fn ring_members<const INTERIOR: bool, const FACES: bool>(
+    mesh: &HalfEdgeMesh,
+    out: &[u32],
+    w: &mut impl Weights,
+) {
+    for &h in out {
+        if FACES {
+            w.face_point(mesh.cell_of(h), 1.0);
         }
-        w.corner(mesh.next_in_cell(h), edge_weight);
-        if !ring.interior {
+        w.corner(mesh.next_in_cell(h), 1.0);
+        if !INTERIOR {
             if let Some(incoming) = incoming_boundary(mesh, h) {
-                w.corner(incoming, edge_weight);
+                w.corner(incoming, 1.0);
             }
         }
     }
@@ -179,14 +209,16 @@ pub(crate) fn one_ring(
 /// Weights the other end of each boundary edge at `vertex` by `weight`.
 #[inline]
 pub(crate) fn boundary_ring(mesh: &HalfEdgeMesh, vertex: u32, weight: f32, w: &mut impl Weights) {
+    let group = w.begin_group();
     for &h in mesh.out_half_edges(vertex) {
         if mesh.he_next_around_edge[h as usize] == h {
-            w.corner(mesh.next_in_cell(h), weight);
+            w.corner(mesh.next_in_cell(h), 1.0);
         }
         if let Some(incoming) = incoming_boundary(mesh, h) {
-            w.corner(incoming, weight);
+            w.corner(incoming, 1.0);
         }
     }
+    w.end_group(group, weight);
 }
 
 /// The one-ring of `vertex`, counted by walking once around it (across each edge from a face's

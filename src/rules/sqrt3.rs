@@ -112,7 +112,7 @@ impl Sqrt3Rules for Sqrt3 {
             return;
         }
         let alpha = sqrt3_alpha(ring.valence);
-        one_ring(mesh, vertex, &ring, alpha / ring.valence as f32, 0.0, w);
+        one_ring(mesh, vertex, &ring, alpha / ring.valence as f32, false, w);
         w.vertex(vertex, 1.0 - alpha);
     }
 
