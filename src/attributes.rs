@@ -4,6 +4,23 @@
 //! A channel is vertex-varying (one value per vertex) or face-varying (one value index per face
 //! corner, so a vertex may have several values: UVs split at a seam). Vertex-varying channels
 //! travel side by side as [`Rows`] through the levels.
+//!
+//! ```
+//! use subsurf::attributes::Attribute;
+//! use subsurf::scheme::subdivide_with_attributes;
+//! use subsurf::{shapes, Options, Scheme, Tags};
+//!
+//! let cube = shapes::cube();
+//! // A channel that is the x coordinate: it stays the x coordinate of every refined vertex.
+//! let x: Vec<f32> = cube.positions.chunks(3).map(|p| p[0]).collect();
+//! let options = Options::new(Scheme::CatmullClark, 2);
+//! let (refined, channels) =
+//!     subdivide_with_attributes(&cube, &[Attribute::vertex("x", 1, x)], &options, &Tags::default())
+//!         .unwrap();
+//! for (p, x) in refined.positions.chunks(3).zip(&channels[0].values) {
+//!     assert!((p[0] - x).abs() < 1e-6);
+//! }
+//! ```
 
 use crate::error::{Error, Result};
 use crate::primvar::Rows;

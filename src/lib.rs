@@ -15,8 +15,10 @@
 //! assert_eq!(refined.num_faces(), 16);
 //! ```
 //!
-//! Layers, bottom up: [`mesh`] (the half-edge mesh), [`refine`] (topology hosts) × [`rules`]
-//! (stencil policies), [`scheme`] (the public vocabulary), [`io`] (OBJ), and the wasm bindings.
+//! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
+//! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
+//! [`attributes`] (data besides positions), [`scheme`] (the driver), [`io`] (OBJ), and the wasm
+//! bindings.
 
 pub mod attributes;
 pub mod error;

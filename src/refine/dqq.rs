@@ -247,14 +247,12 @@ fn child_points<R: CornerRules, P: Primvar>(
 ) -> P {
     let mut points = parent.with_capacity(layout.num_child_vertices(mesh));
     let mut sum = parent.sum(&mesh.he_from, None);
-    for h in 0..mesh.num_half_edges() as u32 {
-        points.push(&mut sum, |w| rules.corner_point(mesh, h, w));
-    }
-    for &h in &layout.boundary {
-        for near in 0..2 {
-            points.push(&mut sum, |w| rules.boundary_point(mesh, h, near, w));
-        }
-    }
+    let corners = mesh.num_half_edges() as u32;
+    points.extend_with(corners, &mut sum, |h, w| rules.corner_point(mesh, h, w));
+    let cut = 2 * layout.boundary.len() as u32;
+    points.extend_with(cut, &mut sum, |k, w| {
+        rules.boundary_point(mesh, layout.boundary[k as usize / 2], k as usize % 2, w)
+    });
     points
 }
 

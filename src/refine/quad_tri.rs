@@ -28,23 +28,20 @@ fn points<R: MixedSplitRules, P: Primvar>(
     // Face points of every cell first (the rules read them), then the child values.
     let mut face_points = parent.with_capacity(mesh.num_cells());
     let mut sum = parent.sum(&mesh.he_from, None);
-    for c in 0..mesh.num_cells() as u32 {
-        face_points.push(&mut sum, |w| rules.face_point(mesh, c, w));
-    }
+    let cells = mesh.num_cells() as u32;
+    face_points.extend_with(cells, &mut sum, |c, w| rules.face_point(mesh, c, w));
     let mut points =
         parent.with_capacity(mesh.num_vertices() + mesh.num_cells() + mesh.num_edges());
     let mut sum = parent.sum(&mesh.he_from, Some(&face_points));
-    for v in 0..mesh.num_vertices() as u32 {
-        points.push(&mut sum, |w| rules.vertex_point(mesh, v, w));
-    }
+    let vertices = mesh.num_vertices() as u32;
+    points.extend_with(vertices, &mut sum, |v, w| rules.vertex_point(mesh, v, w));
     for (c, &k) in centroid_of.iter().enumerate() {
         if k != u32::MAX {
             points.push(&mut sum, |w| w.face_point(c as u32, 1.0));
         }
     }
-    for e in 0..mesh.num_edges() as u32 {
-        points.push(&mut sum, |w| rules.edge_point(mesh, e, w));
-    }
+    let edges = mesh.num_edges() as u32;
+    points.extend_with(edges, &mut sum, |e, w| rules.edge_point(mesh, e, w));
     points
 }
 

@@ -112,9 +112,8 @@ fn child_points<R: Sqrt3Rules, P: Primvar>(
 ) -> P {
     let mut points = parent.with_capacity(count);
     let mut sum = parent.sum(&mesh.he_from, None);
-    for v in 0..mesh.num_vertices() as u32 {
-        points.push(&mut sum, |w| rules.vertex_point(mesh, v, refine_boundary, w));
-    }
+    let vertices = mesh.num_vertices() as u32;
+    points.extend_with(vertices, &mut sum, |v, w| rules.vertex_point(mesh, v, refine_boundary, w));
     points.extend_zeroed(count - mesh.num_vertices());
     // Each cell writes its own one or two slots.
     for (c, (&b, &slot)) in split.iter().zip(first).enumerate() {

@@ -49,14 +49,20 @@ impl CornerRules for DooSabin {
         let range = mesh.cell_range(mesh.cell_of(half_edge) as usize);
         let (start, n) = (range.start as u32, range.len());
         let first = (half_edge - start) as usize;
-        // From the corner round the face: the corners after it, then those before it.
-        let corner = |k: usize| start + ((first + k) % n) as u32;
+        // From the corner round the face: the corners after it, then those before it (a
+        // subtraction, not `%`: a division per corner cost Doo-Sabin 20 % on triangles).
+        let corner = |k: usize| {
+            let at = first + k;
+            start + if at >= n { at - n } else { at } as u32
+        };
         if n == 4 {
-            for (k, weight) in
-                [9.0 / 16.0, 3.0 / 16.0, 1.0 / 16.0, 3.0 / 16.0].into_iter().enumerate()
-            {
-                w.corner(corner(k), weight);
-            }
+            // (9, 3, 1, 3) / 16, summed whole and scaled once.
+            let group = w.begin_group();
+            w.corner(corner(1), 3.0);
+            w.corner(corner(3), 3.0);
+            w.corner(corner(2), 1.0);
+            w.corner(corner(0), 9.0);
+            w.end_group(group, 1.0 / 16.0);
             return;
         }
         match weight_table().get(n) {
