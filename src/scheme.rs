@@ -147,6 +147,16 @@ pub fn subdivide_refined_with(
     refine_with_attributes(Cow::Owned(base), attributes, options, tags)
 }
 
+/// [`subdivide_mesh_refined`] with attribute channels.
+pub fn subdivide_mesh_refined_with(
+    base: HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'static>> {
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
+}
+
 /// [`subdivide_mesh_borrowed`] with attribute channels.
 pub fn subdivide_mesh_borrowed_with<'a>(
     base: &'a HalfEdgeMesh,
@@ -157,19 +167,25 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     refine_with_attributes(Cow::Borrowed(base), attributes, options, tags)
 }
 
-fn refine_with_attributes<'a>(
-    base: Cow<'a, HalfEdgeMesh>,
-    attributes: &[Attribute],
-    options: &Options,
-    tags: &Tags,
-) -> Result<Refined<'a>> {
-    attributes::validate(attributes, base.num_vertices(), base.num_half_edges())?;
+/// Checks `attributes` against `mesh` as the `*_with` functions do before any work.
+pub fn check_attributes(attributes: &[Attribute], mesh: &HalfEdgeMesh) -> Result<()> {
+    attributes::validate(attributes, mesh.num_vertices(), mesh.num_half_edges())?;
     if let Some(a) = attributes.iter().find(|a| a.is_face_varying()) {
         return Err(Error::Unsupported(format!(
             "attribute '{}': face-varying channels (with indices) are not refined by this version; give one value per vertex instead",
             a.name
         )));
     }
+    Ok(())
+}
+
+fn refine_with_attributes<'a>(
+    base: Cow<'a, HalfEdgeMesh>,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'a>> {
+    check_attributes(attributes, &base)?;
     let (rows, layout) = attributes::pack(attributes, base.num_vertices());
     refine_levels(base, options, tags, rows, |rows| attributes::unpack(rows, &layout))
 }

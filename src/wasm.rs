@@ -13,6 +13,7 @@
 //! gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, out.triangles, gl.STATIC_DRAW);
 //! ```
 
+use crate::attributes::{self, Attribute};
 use crate::error::Error;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
@@ -56,6 +57,23 @@ export interface SubdivideMesh {
    * options: `subdivide(mesh, { ...mesh.tags, levels: 2 })`.
    */
   tags?: ObjTags;
+  /**
+   * Data besides positions, by name (colours, skin weights, morph targets): each channel is
+   * refined with the same weights as the positions and comes back in the result's
+   * `attributes` under the same name.
+   */
+  attributes?: Record<string, AttributeChannel>;
+}
+
+/**
+ * One channel: `itemSize` floats per vertex (1 to 16), in vertex order. (`indices`, one value
+ * index per face corner for face-varying data such as UVs split at seams, is checked but refused
+ * by this version.)
+ */
+export interface AttributeChannel {
+  array: Float32Array;
+  itemSize: number;
+  indices?: Uint32Array;
 }
 
 /** How to subdivide. Every field is optional. */
@@ -121,6 +139,8 @@ export interface ObjMesh extends PolygonMesh {
 export interface SubdivideResult extends PolygonMesh {
   /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */
   triangles: Uint32Array;
+  /** The refined channels of `mesh.attributes`, by name; present when the mesh had some. */
+  attributes?: Record<string, AttributeChannel>;
 }
 "#;
 
@@ -139,7 +159,10 @@ const OPTION_KEYS: [&str; 10] = [
 ];
 
 /// Mesh fields read from the input object.
-const MESH_KEYS: [&str; 3] = ["positions", "indices", "faceSizes"];
+const MESH_KEYS: [&str; 4] = ["positions", "indices", "faceSizes", "attributes"];
+
+/// Fields of one attribute channel.
+const CHANNEL_KEYS: [&str; 3] = ["array", "itemSize", "indices"];
 
 /// Mesh fields accepted and ignored: the extra output of `subdivide` and of `readObj`.
 const IGNORED_MESH_KEYS: [&str; 2] = ["triangles", "tags"];
@@ -175,7 +198,9 @@ pub fn subdivide(
     let (options, tags) = read_options(options).map_err(js_error)?;
     let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
-    let refined = scheme::subdivide_mesh_refined(base, &options, &tags).map_err(js_error)?;
+    let attributes = read_attributes(mesh).map_err(js_error)?;
+    let refined = scheme::subdivide_mesh_refined_with(base, &attributes, &options, &tags)
+        .map_err(js_error)?;
     refined_object(&refined, lent)
 }
 
@@ -196,6 +221,7 @@ pub fn subdivide(
 #[wasm_bindgen]
 pub struct BaseMesh {
     mesh: HalfEdgeMesh,
+    attributes: Vec<Attribute>,
 }
 
 #[wasm_bindgen]
@@ -206,7 +232,10 @@ impl BaseMesh {
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     ) -> JsResult<BaseMesh> {
-        Ok(BaseMesh { mesh: read_half_edge_mesh(mesh).map_err(js_error)? })
+        let base = read_half_edge_mesh(mesh).map_err(js_error)?;
+        let attributes = read_attributes(mesh).map_err(js_error)?;
+        scheme::check_attributes(&attributes, &base).map_err(js_error)?;
+        Ok(BaseMesh { mesh: base, attributes })
     }
 
     /// `subdivide(mesh, options, into)` for this mesh, which stays as it is.
@@ -219,7 +248,8 @@ impl BaseMesh {
         let (options, tags) = read_options(options).map_err(js_error)?;
         let lent = Lent::read(into).map_err(js_error)?;
         let refined =
-            scheme::subdivide_mesh_borrowed(&self.mesh, &options, &tags).map_err(js_error)?;
+            scheme::subdivide_mesh_borrowed_with(&self.mesh, &self.attributes, &options, &tags)
+                .map_err(js_error)?;
         refined_object(&refined, lent)
     }
 
@@ -246,6 +276,41 @@ impl BaseMesh {
         }
         let positions = copy_vertices(positions).map_err(js_error)?;
         self.mesh.set_positions(positions).map_err(js_error)
+    }
+
+    /// Replaces the values of the vertex-varying channel `name` (given to the constructor in
+    /// `mesh.attributes`): `itemSize` floats per vertex, all finite. Throws, and leaves the
+    /// channel as it was, otherwise.
+    #[wasm_bindgen(js_name = setAttribute)]
+    pub fn set_attribute(
+        &mut self,
+        name: &str,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] array: &JsValue,
+    ) -> JsResult<()> {
+        let Some(i) = self.attributes.iter().position(|a| a.name == name) else {
+            let names = quoted_list(self.attributes.iter().map(|a| a.name.as_str()));
+            let known = if self.attributes.is_empty() { "none".to_string() } else { names };
+            return Err(js_error(Error::InvalidAttribute(format!(
+                "attribute '{name}': this mesh has no such channel (its channels: {known}); \
+                 give every channel to the BaseMesh constructor in mesh.attributes"
+            ))));
+        };
+        if self.attributes[i].is_face_varying() {
+            return Err(js_error(Error::InvalidAttribute(format!(
+                "attribute '{name}': setAttribute takes vertex-varying channels only"
+            ))));
+        }
+        let field = format!("attributes.{name}.array");
+        if typed_array_kind(array).as_deref() != Some("Float32Array") {
+            return Err(js_error(wrong_array_type(&field, "Float32Array", array)));
+        }
+        let mut channel = self.attributes[i].clone();
+        channel.values = copy_f32(array, &field).map_err(js_error)?;
+        let vertices = self.mesh.num_vertices();
+        attributes::validate(std::slice::from_ref(&channel), vertices, self.mesh.num_half_edges())
+            .map_err(js_error)?;
+        self.attributes[i] = channel;
+        Ok(())
     }
 
     /// The number of vertices, which `setPositions` takes 3 numbers each of.
@@ -711,6 +776,74 @@ fn read_half_edge_mesh(value: &JsValue) -> Result<HalfEdgeMesh, Error> {
     HalfEdgeMesh::from_vertices(positions, indices, &face_sizes)
 }
 
+/// The channels of `mesh.attributes` (none when it is absent), copied, in the object's key
+/// order. Their lengths are checked against the mesh later, with the mesh's counts.
+fn read_attributes(mesh: &JsValue) -> Result<Vec<Attribute>, Error> {
+    let value = get(mesh, "attributes")?;
+    if value.is_undefined() || value.is_null() {
+        return Ok(Vec::new());
+    }
+    let attribute_error = |message: String| Error::InvalidAttribute(message);
+    if !value.is_object() || is_array(&value) || is_typed_array(&value) {
+        return Err(attribute_error(format!(
+            "mesh.attributes must be an object of channels by name, {{ color: {{ array: \
+             Float32Array, itemSize: 3 }} }}, got {}",
+            describe(&value)
+        )));
+    }
+    let keys = Reflect::own_keys(&value)
+        .map_err(|e| attribute_error(format!("listing mesh.attributes threw {}", describe(&e))))?;
+    let mut channels = Vec::new();
+    for key in keys.iter() {
+        let Some(name) = key.as_string() else { continue };
+        let at = |what: &str| format!("attribute '{name}': {what}");
+        let channel = Reflect::get(&value, &key)
+            .map_err(|e| attribute_error(at(&format!("reading it threw {}", describe(&e)))))?;
+        if !channel.is_object() || is_array(&channel) || is_typed_array(&channel) {
+            return Err(attribute_error(at(&format!(
+                "must be an object {{ array: Float32Array, itemSize: number, indices?: \
+                 Uint32Array }}, got {}",
+                describe(&channel)
+            ))));
+        }
+        check_keys(&channel, &CHANNEL_KEYS, &[], "channel field", "channel fields")
+            .map_err(|m| attribute_error(at(&m)))?;
+        let read = |field: &str| {
+            Reflect::get(&channel, &JsValue::from_str(field)).map_err(|e| {
+                attribute_error(at(&format!("reading {field} threw {}", describe(&e))))
+            })
+        };
+        let item_size = read("itemSize")?;
+        let item_size = match item_size.as_f64() {
+            Some(n) if n.fract() == 0.0 && (1.0..=16.0).contains(&n) => n as usize,
+            _ => {
+                return Err(attribute_error(at(&format!(
+                    "itemSize must be a whole number from 1 to 16, got {}",
+                    describe(&item_size)
+                ))));
+            }
+        };
+        let field = format!("attributes.{name}.array");
+        let array = read("array")?;
+        if typed_array_kind(&array).as_deref() != Some("Float32Array") {
+            return Err(wrong_array_type(&field, "Float32Array", &array));
+        }
+        let values = copy_f32(&array, &field)?;
+        let indices = read("indices")?;
+        let indices = if indices.is_undefined() || indices.is_null() {
+            None
+        } else {
+            let field = format!("attributes.{name}.indices");
+            if typed_array_kind(&indices).as_deref() != Some("Uint32Array") {
+                return Err(wrong_array_type(&field, "Uint32Array", &indices));
+            }
+            Some(copy_u32(&indices, &field)?)
+        };
+        channels.push(Attribute { name, item_size, values, indices });
+    }
+    Ok(channels)
+}
+
 /// The three arrays of the caller's mesh object, checked and copied in this order (so that the
 /// first fault is the one reported), the positions by `positions`.
 fn read_mesh_arrays<P>(
@@ -1023,6 +1156,19 @@ fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsValue> {
     set_field(&object, "indices", &indices.finish()?)?;
     set_field(&object, "faceSizes", &face_sizes.finish()?)?;
     set_field(&object, "triangles", &triangles.finish()?)?;
+    if !refined.attributes().is_empty() {
+        let channels = Object::new();
+        for a in refined.attributes() {
+            let channel = Object::new();
+            set_field(&channel, "array", &Float32Array::from(&a.values[..]))?;
+            set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
+            if let Some(indices) = &a.indices {
+                set_field(&channel, "indices", &Uint32Array::from(&indices[..]))?;
+            }
+            set_field(&channels, &a.name, &channel)?;
+        }
+        set_field(&object, "attributes", &channels)?;
+    }
     Ok(object.into())
 }
 

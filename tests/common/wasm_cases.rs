@@ -593,3 +593,6 @@ mod bad_inputs;
 
 #[path = "wasm_reuse.rs"]
 mod reuse;
+
+#[path = "wasm_attributes.rs"]
+mod attributes;

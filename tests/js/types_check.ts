@@ -17,7 +17,11 @@ const triangles: Uint32Array = out.triangles;
 const again: SubdivideResult = subdivide(cube, { levels: 2 }, out);
 subdivideInNode(cube, { scheme: ['doo-sabin', 'loop'], creases: { edges: new Uint32Array([0, 1]), sharpness: new Float32Array([2]) } });
 
-const base = new BaseMesh(cube);
+const colored = { ...cube, attributes: { color: { array: new Float32Array(24), itemSize: 3 } } };
+const colors: Float32Array | undefined = subdivide(colored, { levels: 1 }).attributes?.color.array;
+
+const base = new BaseMesh(colored);
+base.setAttribute('color', new Float32Array(24));
 const vertices: number = base.numVertices + base.numFaces;
 const faces: Float64Array = base.predictCounts({ levels: 3 }).faces;
 base.setPositions(new Float32Array(3 * vertices));
@@ -37,5 +41,9 @@ subdivide(cube, { level: 2 });
 base.setPositions([0, 0, 0]);
 // @ts-expect-error: numFaces is read-only
 base.numFaces = 3;
+// @ts-expect-error: an attribute channel's array must be a Float32Array
+subdivide({ ...cube, attributes: { color: { array: [0, 0, 0], itemSize: 3 } } });
+// @ts-expect-error: setAttribute takes a Float32Array
+base.setAttribute('color', [0, 0, 0]);
 
-export const used = [triangles, moved, faces];
+export const used = [triangles, moved, faces, colors];
