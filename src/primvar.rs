@@ -45,50 +45,82 @@ impl Weights for PointSum<'_> {
         self.sum += Vec3::from_array(self.face_points[c as usize]) * weight;
     }
 
-    /// The sum before the group.
-    type Group = Vec3;
+    /// The sum before the group, and the group's scale.
+    type Group = (Vec3, f32);
 
     #[inline(always)]
-    fn begin_group(&mut self) -> Vec3 {
-        std::mem::replace(&mut self.sum, Vec3::ZERO)
+    fn begin_group(&mut self, scale: f32) -> (Vec3, f32) {
+        (std::mem::replace(&mut self.sum, Vec3::ZERO), scale)
     }
 
     #[inline(always)]
-    fn end_group(&mut self, outer: Vec3, scale: f32) {
+    fn end_group(&mut self, (outer, scale): (Vec3, f32)) {
         self.sum = outer + self.sum * scale;
     }
 }
 
 /// Sums weighted rows of `width` floats per vertex (every vertex-varying channel side by side):
 /// the parent level's `rows` by vertex, corners through `he_from`, and the child level's
-/// `face_rows` by cell, into `sum`.
+/// `face_rows` by cell, into `sum`. A group multiplies the weights inside it as they come (no
+/// sum is set aside: a row is wider than a register).
 pub struct RowSum<'a> {
     pub rows: &'a [f32],
     pub width: usize,
     pub he_from: &'a [u32],
     pub face_rows: &'a [f32],
     pub sum: Vec<f32>,
-    /// The sums of enclosing [`Weights::scaled`] groups, one row each.
-    outer: Vec<f32>,
+    /// The product of the scales of the open groups.
+    scale: f32,
 }
 
 impl<'a> RowSum<'a> {
     pub fn new(rows: &'a [f32], width: usize, he_from: &'a [u32], face_rows: &'a [f32]) -> Self {
-        RowSum { rows, width, he_from, face_rows, sum: vec![0.0; width], outer: Vec::new() }
+        RowSum { rows, width, he_from, face_rows, sum: vec![0.0; width], scale: 1.0 }
     }
 
     /// Appends to `out` the row whose weights `rule` gives.
     #[inline]
     pub fn eval_into(&mut self, out: &mut Vec<f32>, rule: impl FnOnce(&mut Self)) {
-        self.sum.fill(0.0);
+        match &mut self.sum[..] {
+            [x] => *x = 0.0,
+            [x, y] => [*x, *y] = [0.0; 2],
+            [x, y, z] => [*x, *y, *z] = [0.0; 3],
+            sum => sum.fill(0.0),
+        }
         rule(self);
-        out.extend_from_slice(&self.sum);
+        // Constant lengths for the common widths: no memcpy call per row.
+        match self.sum[..] {
+            [x] => out.push(x),
+            [x, y] => out.extend_from_slice(&[x, y]),
+            [x, y, z] => out.extend_from_slice(&[x, y, z]),
+            [x, y, z, w] => out.extend_from_slice(&[x, y, z, w]),
+            _ => out.extend_from_slice(&self.sum),
+        }
     }
 
+    /// `sum += weight * row`. The common widths (a scalar, UVs, a colour, four skin weights)
+    /// get unrolled bodies: a loop over three floats cost more than the sums themselves.
     #[inline(always)]
     fn add(sum: &mut [f32], row: &[f32], weight: f32) {
-        for (s, &x) in sum.iter_mut().zip(row) {
-            *s += x * weight;
+        match sum.len() {
+            1 => add_n::<1>(sum, row, weight),
+            2 => add_n::<2>(sum, row, weight),
+            3 => add_n::<3>(sum, row, weight),
+            4 => add_n::<4>(sum, row, weight),
+            _ => {
+                for (s, &x) in sum.iter_mut().zip(row) {
+                    *s += x * weight;
+                }
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn add_n<const N: usize>(sum: &mut [f32], row: &[f32], weight: f32) {
+    if let (Some(sum), Some(row)) = (sum.first_chunk_mut::<N>(), row.first_chunk::<N>()) {
+        for k in 0..N {
+            sum[k] += row[k] * weight;
         }
     }
 }
@@ -97,7 +129,8 @@ impl Weights for RowSum<'_> {
     #[inline]
     fn vertex(&mut self, v: u32, weight: f32) {
         let start = v as usize * self.width;
-        Self::add(&mut self.sum, &self.rows[start..start + self.width], weight);
+        let row = &self.rows[start..start + self.width];
+        Self::add(&mut self.sum, row, weight * self.scale);
     }
 
     #[inline]
@@ -108,27 +141,23 @@ impl Weights for RowSum<'_> {
     #[inline]
     fn face_point(&mut self, c: u32, weight: f32) {
         let start = c as usize * self.width;
-        Self::add(&mut self.sum, &self.face_rows[start..start + self.width], weight);
+        let row = &self.face_rows[start..start + self.width];
+        Self::add(&mut self.sum, row, weight * self.scale);
     }
 
-    /// Where the sum before the group is kept in `outer`.
-    type Group = usize;
+    /// The scale outside the group.
+    type Group = f32;
 
     #[inline]
-    fn begin_group(&mut self) -> usize {
-        let depth = self.outer.len();
-        self.outer.extend_from_slice(&self.sum);
-        self.sum.fill(0.0);
-        depth
+    fn begin_group(&mut self, scale: f32) -> f32 {
+        let outer = self.scale;
+        self.scale = outer * scale;
+        outer
     }
 
     #[inline]
-    fn end_group(&mut self, depth: usize, scale: f32) {
-        let outer = &self.outer[depth..];
-        for (s, &o) in self.sum.iter_mut().zip(outer) {
-            *s = o + *s * scale;
-        }
-        self.outer.truncate(depth);
+    fn end_group(&mut self, outer: f32) {
+        self.scale = outer;
     }
 }
 

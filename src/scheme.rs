@@ -197,7 +197,7 @@ fn refine_levels<'a>(
     options: &Options,
     tags: &Tags,
     mut rows: Rows,
-    finish: impl Fn(&Rows) -> Vec<Attribute>,
+    finish: impl FnOnce(Rows) -> Vec<Attribute>,
 ) -> Result<Refined<'a>> {
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
@@ -214,7 +214,7 @@ fn refine_levels<'a>(
     let mut mesh = base;
     if options.schemes.is_empty() {
         if tags.holes.is_empty() {
-            return Ok(Refined::poly(mesh.to_poly(), finish(&rows)));
+            return Ok(Refined::poly(mesh.to_poly(), finish(rows)));
         }
         let level_tags = LevelTags::base_with_edges(&mesh, tags, &crease_edges, false);
         let mut poly = mesh.to_poly();
@@ -229,7 +229,7 @@ fn refine_levels<'a>(
             start += n as usize;
         }
         poly.indices = kept;
-        return Ok(Refined::poly(poly, finish(&rows)));
+        return Ok(Refined::poly(poly, finish(rows)));
     }
     let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
@@ -329,7 +329,7 @@ fn refine_levels<'a>(
         mesh = match child {
             // A mesh without vertices (Doo-Sabin of a mesh without faces) stays empty.
             Level::Poly(poly, rows) if last || poly.positions.is_empty() => {
-                return Ok(Refined::poly(poly, finish(&rows)));
+                return Ok(Refined::poly(poly, finish(rows)));
             }
             Level::Poly(poly, child_rows) => {
                 rows = child_rows;
@@ -340,11 +340,11 @@ fn refine_levels<'a>(
                 Cow::Owned(mesh)
             }
             Level::Quads { positions, parent, rows } => {
-                return Ok(Refined::quads(positions, parent, finish(&rows)));
+                return Ok(Refined::quads(positions, parent, finish(rows)));
             }
         };
     }
-    Ok(Refined::poly(mesh.to_poly(), finish(&rows)))
+    Ok(Refined::poly(mesh.to_poly(), finish(rows)))
 }
 
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the

@@ -57,12 +57,12 @@ impl CornerRules for DooSabin {
         };
         if n == 4 {
             // (9, 3, 1, 3) / 16, summed whole and scaled once.
-            let group = w.begin_group();
+            let group = w.begin_group(1.0 / 16.0);
             w.corner(corner(1), 3.0);
             w.corner(corner(3), 3.0);
             w.corner(corner(2), 1.0);
             w.corner(corner(0), 9.0);
-            w.end_group(group, 1.0 / 16.0);
+            w.end_group(group);
             return;
         }
         match weight_table().get(n) {

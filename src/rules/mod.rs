@@ -88,11 +88,11 @@ pub trait CornerRules {
 pub fn centroid(mesh: &HalfEdgeMesh, cell: u32, w: &mut impl Weights) {
     let range = mesh.cell_range(cell as usize);
     let scale = 1.0 / range.len() as f32;
-    let group = w.begin_group();
+    let group = w.begin_group(scale);
     for h in range {
         w.corner(h as u32, 1.0);
     }
-    w.end_group(group, scale);
+    w.end_group(group);
 }
 
 /// `weight` on each end of an edge.
@@ -174,7 +174,7 @@ pub(crate) fn one_ring(
     w: &mut impl Weights,
 ) {
     let out = mesh.out_half_edges(vertex);
-    let group = w.begin_group();
+    let group = w.begin_group(weight);
     // One loop per case, so that the common ones (interior) test nothing per face.
     match (ring.interior, faces) {
         (true, true) => ring_members::<true, true>(mesh, out, w),
@@ -182,7 +182,7 @@ pub(crate) fn one_ring(
         (false, true) => ring_members::<false, true>(mesh, out, w),
         (false, false) => ring_members::<false, false>(mesh, out, w),
     }
-    w.end_group(group, weight);
+    w.end_group(group);
 }
 
 /// Weight 1 on the other end of each edge at the vertex whose outgoing half-edges are `out`
@@ -209,7 +209,7 @@ fn ring_members<const INTERIOR: bool, const FACES: bool>(
 /// Weights the other end of each boundary edge at `vertex` by `weight`.
 #[inline]
 pub(crate) fn boundary_ring(mesh: &HalfEdgeMesh, vertex: u32, weight: f32, w: &mut impl Weights) {
-    let group = w.begin_group();
+    let group = w.begin_group(weight);
     for &h in mesh.out_half_edges(vertex) {
         if mesh.he_next_around_edge[h as usize] == h {
             w.corner(mesh.next_in_cell(h), 1.0);
@@ -218,7 +218,7 @@ pub(crate) fn boundary_ring(mesh: &HalfEdgeMesh, vertex: u32, weight: f32, w: &m
             w.corner(incoming, 1.0);
         }
     }
-    w.end_group(group, weight);
+    w.end_group(group);
 }
 
 /// The one-ring of `vertex`, counted by walking once around it (across each edge from a face's

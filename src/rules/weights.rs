@@ -17,25 +17,25 @@ pub trait Weights {
     /// The face point of parent cell `c`: a point of the child level, which the host computes
     /// before any point that weights it.
     fn face_point(&mut self, c: u32, weight: f32);
-    /// What a sink keeps while a group is open (the sum so far, or where the group starts).
+    /// What a sink keeps while a group is open (the sum so far, or the scale outside it).
     type Group;
     /// Opens a group: everything added until [`Weights::end_group`] counts `scale` times. A rule
     /// that weights many sources alike (the ring of a vertex, the corners of a face) adds them
     /// at weight 1 in a group, so that a sink that sums values scales the group's sum once, as a
     /// hand-written stencil would: cheaper, and with less rounding, than scaling each value.
     /// Groups nest.
-    fn begin_group(&mut self) -> Self::Group;
-    /// Closes the group `begin_group` opened, scaling what it added by `scale`.
-    fn end_group(&mut self, group: Self::Group, scale: f32);
+    fn begin_group(&mut self, scale: f32) -> Self::Group;
+    /// Closes the group `begin_group` opened.
+    fn end_group(&mut self, group: Self::Group);
     /// Adds `scale` times everything `group` adds (a group around a closure).
     #[inline(always)]
     fn scaled(&mut self, scale: f32, group: impl FnOnce(&mut Self))
     where
         Self: Sized,
     {
-        let open = self.begin_group();
+        let open = self.begin_group(scale);
         group(self);
-        self.end_group(open, scale);
+        self.end_group(open);
     }
 }
 
@@ -65,13 +65,13 @@ impl<W: Weights> Weights for Scaled<'_, W> {
     type Group = W::Group;
 
     #[inline(always)]
-    fn begin_group(&mut self) -> W::Group {
-        self.inner.begin_group()
+    fn begin_group(&mut self, scale: f32) -> W::Group {
+        self.inner.begin_group(scale)
     }
 
     #[inline(always)]
-    fn end_group(&mut self, group: W::Group, scale: f32) {
-        self.inner.end_group(group, scale);
+    fn end_group(&mut self, group: W::Group) {
+        self.inner.end_group(group);
     }
 }
 
@@ -110,14 +110,14 @@ impl Weights for Stencil {
         self.sources.push((Source::FacePoint(c), weight));
     }
 
-    /// Where the group's sources start.
-    type Group = usize;
+    /// Where the group's sources start, and its scale.
+    type Group = (usize, f32);
 
-    fn begin_group(&mut self) -> usize {
-        self.sources.len()
+    fn begin_group(&mut self, scale: f32) -> (usize, f32) {
+        (self.sources.len(), scale)
     }
 
-    fn end_group(&mut self, start: usize, scale: f32) {
+    fn end_group(&mut self, (start, scale): (usize, f32)) {
         for (_, w) in &mut self.sources[start..] {
             *w *= scale;
         }
