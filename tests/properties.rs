@@ -399,6 +399,43 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(Config { cases: CASES, failure_persistence: None, ..Config::default() })]
+    /// Random affine channels on random meshes, every scheme, two levels and every boundary
+    /// rule: the channels come out as the same affine functions of the refined positions (the
+    /// rules are affine, closed form), and the positions are those of a call without channels.
+    #[test]
+    fn affine_channels_follow_the_positions(
+        spec in spec(),
+        pick in 0usize..7,
+        bound in 0usize..5,
+        a in prop::array::uniform4(-2.0f32..2.0),
+        b in prop::array::uniform4(-2.0f32..2.0),
+    ) {
+        let scheme = Scheme::ALL[pick];
+        let input = input_for(scheme, &spec);
+        let f = |p: &[f32]| [a[0] * p[0] + a[1] * p[1] + a[2] * p[2] + a[3], b[0] * p[0] + b[1] * p[1] + b[2] * p[2] + b[3]];
+        let values: Vec<f32> = input.positions.chunks(3).flat_map(f).collect();
+        let channels = [subsurf::attributes::Attribute::vertex("f", 2, values)];
+        let options = options(scheme, 2).with_boundary(Boundary::ALL[bound]);
+        let tags = subsurf::Tags::default();
+        let plain = subdivide(&input, &options);
+        match subsurf::scheme::subdivide_with_attributes(&input, &channels, &options, &tags) {
+            Ok((out, refined)) => {
+                prop_assert_eq!(Some(&out), plain.as_ref().ok());
+                let scale = out.positions.iter().fold(1.0f32, |m, x| m.max(x.abs()));
+                for (p, got) in out.positions.chunks(3).zip(refined[0].values.chunks(2)) {
+                    let want = f(p);
+                    for k in 0..2 {
+                        prop_assert!((got[k] - want[k]).abs() <= 1e-4 * scale, "{} {:?}: {:?} vs {:?}", scheme, options.boundary, got, want);
+                    }
+                }
+            }
+            Err(e) => prop_assert_eq!(Some(e), plain.err()),
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Native vs wasm: the fixture
 

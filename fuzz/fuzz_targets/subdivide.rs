@@ -2,12 +2,16 @@
 //! (distinct in-range corners, finite positions) but of any topology: open, non-manifold,
 //! mis-oriented, mixed face sizes, isolated vertices. A call either returns a valid mesh, no
 //! larger than predicted and inside the input's bounding box, or refuses with `Unsupported` or
-//! `TooLarge`; never a panic and never an invalid intermediate mesh.
+//! `TooLarge`; never a panic and never an invalid intermediate mesh. The same call with attribute
+//! channels: the x coordinate as a channel stays the x coordinate of every refined vertex and
+//! the positions do not change; a fuzzed extra channel (any size, values or indices) is refined
+//! or refused with `InvalidAttribute` or `Unsupported`.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use subsurf::scheme::predict_counts;
+use subsurf::attributes::Attribute;
+use subsurf::scheme::{predict_counts, subdivide_with_attributes};
 use subsurf::{subdivide, Boundary, Error, HalfEdgeMesh, Options, PolyMesh, Scheme};
 use subsurf_fuzz::{check_error, check_poly, MAX_ELEMENTS, MAX_FACES};
 
@@ -18,6 +22,14 @@ struct Input {
     first: u8,
     second: Option<u8>,
     boundary: u8,
+    extra: Option<Channel>,
+}
+
+#[derive(Arbitrary, Debug)]
+struct Channel {
+    item_size: u8,
+    values: Vec<f32>,
+    indices: Option<Vec<u32>>,
 }
 
 fuzz_target!(|input: Input| {
@@ -55,7 +67,9 @@ fuzz_target!(|input: Input| {
         predict_counts(&HalfEdgeMesh::from_poly(&mesh).expect("a valid mesh"), &options);
     // Doo-Sabin of a mesh without faces is a mesh without vertices, and stays one.
     let faceless_doo_sabin = mesh.num_faces() == 0 && options.schemes.contains(&Scheme::DooSabin);
-    match subdivide(&mesh, &options) {
+    let result = subdivide(&mesh, &options);
+    check_attributes(&mesh, &options, &result, input.extra, &what);
+    match result {
         Ok(out) if faceless_doo_sabin && out.positions.is_empty() => {}
         Ok(out) => {
             check_poly(&out, &what);
@@ -86,6 +100,46 @@ fuzz_target!(|input: Input| {
         }
     }
 });
+
+/// The call again with channels: see the module docs.
+fn check_attributes(
+    mesh: &PolyMesh,
+    options: &Options,
+    plain: &Result<PolyMesh, Error>,
+    extra: Option<Channel>,
+    what: &str,
+) {
+    let x: Vec<f32> = mesh.positions.chunks_exact(3).map(|p| p[0]).collect();
+    let mut channels = vec![Attribute::vertex("x", 1, x)];
+    let fuzzed = extra.is_some();
+    if let Some(c) = extra {
+        let mut values = c.values;
+        values.truncate(16 * MAX_ELEMENTS);
+        let indices = c.indices.map(|mut i| {
+            i.truncate(8 * MAX_ELEMENTS);
+            i
+        });
+        let item_size = c.item_size as usize % 18;
+        channels.push(Attribute { name: "extra".into(), item_size, values, indices });
+    }
+    let tags = subsurf::Tags::default();
+    match (subdivide_with_attributes(mesh, &channels, options, &tags), plain) {
+        (Ok((out, refined)), Ok(expected)) => {
+            assert_eq!(&out, expected, "{what}: channels changed the positions");
+            let x = &refined[0];
+            assert_eq!(x.len(), out.num_vertices(), "{what}: one x per vertex");
+            for (p, got) in out.positions.chunks_exact(3).zip(&x.values) {
+                assert!((p[0] - got).abs() <= 1e-4 * (1.0 + p[0].abs()), "{what}: x {got} vs {}", p[0]);
+            }
+        }
+        (Err(e), Err(expected)) if !fuzzed => assert_eq!(&e, expected, "{what}"),
+        (Err(e @ (Error::InvalidAttribute(_) | Error::Unsupported(_))), _) if fuzzed => {
+            check_error(&e, what);
+        }
+        (Err(_), Err(_)) => {}
+        (got, expected) => panic!("{what}: with channels {got:?}, without {expected:?}"),
+    }
+}
 
 fn bounds(positions: &[f32]) -> ([f32; 3], [f32; 3]) {
     let mut lo = [f32::INFINITY; 3];
