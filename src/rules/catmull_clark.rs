@@ -20,8 +20,7 @@
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
 use super::{
-    boundary_vertex_rule, centroid, edge_midpoint, one_ring, ring, smooth_edge, QuadSplitRules,
-    Weights,
+    centroid, edge_midpoint, interior_ring, one_ring, smooth_edge, QuadSplitRules, Weights,
 };
 use crate::mesh::HalfEdgeMesh;
 use crate::options::Boundary;
@@ -64,13 +63,7 @@ impl QuadSplitRules for CatmullClark {
 
     #[inline]
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
-        let ring = ring(mesh, vertex);
-        if ring.faces == 0 {
-            return w.vertex(vertex, 1.0);
-        }
-        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
-            return;
-        }
+        let Some(ring) = interior_ring(self.boundary, mesh, vertex, w) else { return };
         let [center, ring_weight] = smooth_vertex_mask(ring.faces);
         // The small weights first: summed before the large one, their rounding stays small
         // at high valence (catmark_pole360).

@@ -11,9 +11,7 @@
 
 use super::crease::{creased_edge_point, creased_vertex_point, sharp_or_smooth, LevelTags};
 use super::Weights;
-use super::{
-    boundary_vertex_rule, edge_ends, edge_midpoint, one_ring, ring, smooth_edge, TriSplitRules,
-};
+use super::{edge_ends, edge_midpoint, interior_ring, one_ring, smooth_edge, TriSplitRules};
 use crate::mesh::HalfEdgeMesh;
 use crate::options::Boundary;
 
@@ -61,13 +59,7 @@ impl TriSplitRules for Loop {
 
     #[inline]
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
-        let ring = ring(mesh, vertex);
-        if ring.faces == 0 {
-            return w.vertex(vertex, 1.0);
-        }
-        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
-            return;
-        }
+        let Some(ring) = interior_ring(self.boundary, mesh, vertex, w) else { return };
         let [center, edge] = smooth_vertex_mask(ring.valence);
         one_ring(mesh, vertex, &ring, edge, false, w);
         w.vertex(vertex, center);

@@ -293,6 +293,24 @@ pub(crate) fn boundary_vertex_rule(
     true
 }
 
+/// What every primal vertex rule does first: a vertex without faces stays, a vertex with
+/// boundary edges follows `boundary` (both weighted here); `Some(ring)` for an interior vertex,
+/// which the scheme's own smooth rule moves.
+#[inline(always)]
+pub(crate) fn interior_ring(
+    boundary: Boundary,
+    mesh: &HalfEdgeMesh,
+    vertex: u32,
+    w: &mut impl Weights,
+) -> Option<Ring> {
+    let ring = ring(mesh, vertex);
+    if ring.faces == 0 {
+        w.vertex(vertex, 1.0);
+        return None;
+    }
+    (!boundary_vertex_rule(boundary, mesh, vertex, &ring, w)).then_some(ring)
+}
+
 /// True when `edge` has exactly two half-edges running opposite ways: the only kind of edge a
 /// smooth edge rule applies to. Boundary and non-manifold edges are sharp creases.
 #[inline(always)]

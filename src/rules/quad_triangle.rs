@@ -44,7 +44,7 @@
 //! edges next to the edge). On the boundary the refined crease rule and seed 003's mean equal
 //! the parent-mesh forms of [`boundary_vertex_rule`], and boundary edge points stay midpoints.
 
-use super::{boundary_vertex_rule, edge_midpoint, ring, smooth_edge, MixedSplitRules, Weights};
+use super::{edge_midpoint, interior_ring, smooth_edge, MixedSplitRules, Weights};
 use crate::mesh::HalfEdgeMesh;
 use crate::options::Boundary;
 
@@ -141,13 +141,7 @@ impl MixedSplitRules for QuadTriangle {
     }
 
     fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
-        let ring = ring(mesh, vertex);
-        if ring.faces == 0 {
-            return w.vertex(vertex, 1.0);
-        }
-        if boundary_vertex_rule(self.boundary, mesh, vertex, &ring, w) {
-            return;
-        }
+        let Some(ring) = interior_ring(self.boundary, mesh, vertex, w) else { return };
         let mut r = RefinedRing { valence: ring.valence, ..RefinedRing::default() };
         let out = mesh.out_half_edges(vertex);
         for &h in out {
