@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the npm package into pkg/: release wasm, wasm-bindgen (--target web), wasm-opt -O3 from
-# the npm binaryen package, then package.json, a Node entry point and a README.
+# the npm binaryen package, then the package's own files from js/ (a Node entry point, package.json
+# and README templates).
 # Usage: scripts/build-pkg.sh            (needs what scripts/setup.sh installs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,20 +29,11 @@ echo "== build-pkg: wasm-opt -O3 ($("$WASM_OPT" --version))"
 mv "$BG.opt" "$BG"
 AFTER=$(size "$BG")
 
-# Node has no fetch() for file: URLs, so the plain `await init()` of a --target web build cannot
-# find its .wasm there. This entry loads it synchronously: import { subdivide } from 'subsurf/node'.
-cat >"$OUT/node.js" <<'JS'
-import { readFileSync } from 'node:fs';
-import { initSync } from './subsurf.js';
-
-initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
-
-export * from './subsurf.js';
-JS
-cat >"$OUT/node.d.ts" <<'TS'
-/* The subsurf API, already initialised: no init() call needed in Node. */
-export * from './subsurf.js';
-TS
+# The package's own files are checked-in sources in js/: node.js (Node has no fetch() for file:
+# URLs, so the plain `await init()` of a --target web build cannot find its .wasm there; this
+# entry loads it synchronously: import { subdivide } from 'subsurf/node'), node.d.ts, and the
+# package.json and README.md templates, which get the crate's version and description here.
+cp js/node.js js/node.d.ts "$OUT/"
 
 VERSION=$(cargo metadata --no-deps --format-version 1 |
   node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const p=JSON.parse(s).packages.find(p=>p.name==="subsurf");process.stdout.write(p.version)})')
@@ -50,54 +42,12 @@ DESCRIPTION=$(cargo metadata --no-deps --format-version 1 |
 
 VERSION="$VERSION" DESCRIPTION="$DESCRIPTION" node -e '
 const fs = require("fs");
-const pkg = {
-  name: "subsurf",
-  version: process.env.VERSION,
-  description: process.env.DESCRIPTION,
-  license: "MIT OR Apache-2.0",
-  type: "module",
-  main: "./subsurf.js",
-  module: "./subsurf.js",
-  types: "./subsurf.d.ts",
-  files: ["subsurf.js", "subsurf.d.ts", "subsurf_bg.wasm", "subsurf_bg.wasm.d.ts", "node.js", "node.d.ts", "README.md"],
-  exports: {
-    ".": { types: "./subsurf.d.ts", default: "./subsurf.js" },
-    "./node": { types: "./node.d.ts", default: "./node.js" },
-    "./subsurf_bg.wasm": "./subsurf_bg.wasm",
-    "./package.json": "./package.json"
-  },
-  sideEffects: ["./node.js"],
-  engines: { node: ">=18" },
-  keywords: ["subdivision", "catmull-clark", "mesh", "webassembly", "webgl"]
-};
+const pkg = JSON.parse(fs.readFileSync("js/package.json", "utf8"));
+pkg.version = process.env.VERSION;
+pkg.description = process.env.DESCRIPTION;
 fs.writeFileSync(process.argv[1], JSON.stringify(pkg, null, 2) + "\n");
 ' "$OUT/package.json"
-
-cat >"$OUT/README.md" <<MD
-# subsurf $VERSION
-
-Subdivision surfaces (Catmull-Clark, Loop, Doo-Sabin, Quad/Triangle, bilinear, midpoint) on flat
-typed arrays, compiled from Rust to WebAssembly.
-
-\`\`\`js
-// Browser or bundler
-import init, { subdivide } from 'subsurf';
-await init();
-
-// Node 18+: loads the .wasm synchronously, no init() needed
-import { subdivide } from 'subsurf/node';
-
-const out = subdivide(
-  { positions: Float32Array, indices: Uint32Array, faceSizes: Uint32Array /* omit for triangles */ },
-  { scheme: 'catmull-clark', levels: 2, boundary: 'edge-and-corner', maxFaces: 1e6 },
-);
-// out: { positions: Float32Array, indices: Uint32Array, faceSizes: Uint32Array, triangles: Uint32Array }
-\`\`\`
-
-\`scheme\` may also be an array, one name per level. \`schemeNames()\` and \`boundaryRules()\` list the
-accepted names; \`readObj(text)\`, \`writeObj(mesh)\` and \`version()\` complete the API. Errors are
-thrown as \`Error\` with a message that says what was wrong; the module stays usable afterwards.
-MD
+sed "s/{{VERSION}}/$VERSION/" js/README.md >"$OUT/README.md"
 
 echo "== build-pkg: $OUT/ (version $VERSION)"
 printf '   %-24s %9s bytes before wasm-opt, %9s after (%s%%)\n' "${CRATE}_bg.wasm" "$BEFORE" "$AFTER" \

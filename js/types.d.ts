@@ -1,0 +1,113 @@
+// The interfaces of subsurf's JS API. wasm-bindgen appends this file to the subsurf.d.ts it
+// generates (src/wasm.rs includes it as a typescript_custom_section), after the declarations of
+// the exported functions and classes, which refer to these names.
+/**
+ * Names accepted by `SubdivideOptions.scheme`. 'loop', 'sqrt3' and 'midpoint' take triangles
+ * only; the others take any polygons. `schemeNames()` lists them at run time.
+ */
+export type SchemeName =
+  'catmull-clark' | 'loop' | 'doo-sabin' | 'quad-triangle' | 'sqrt3' | 'bilinear' | 'midpoint';
+
+/** Names accepted by `SubdivideOptions.boundary`; `boundaryRules()` lists them at run time. */
+export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average' | 'none';
+
+/** A polygon mesh as flat typed arrays. The arrays are only read, never modified. */
+export interface SubdivideMesh {
+  /** x, y, z of each vertex. */
+  positions: Float32Array;
+  /** The vertex indices of every face, face after face, counter-clockwise seen from outside. */
+  indices: Uint32Array;
+  /** How many indices each face uses. Omitted: every face is a triangle. */
+  faceSizes?: Uint32Array;
+  /** Ignored, so that a `SubdivideResult` can be subdivided again. */
+  triangles?: Uint32Array;
+  /**
+   * Ignored, so that a `readObj` result can be passed as it is. Tags take effect only as
+   * options: `subdivide(mesh, { ...mesh.tags, levels: 2 })`.
+   */
+  tags?: ObjTags;
+  /**
+   * Data besides positions, by name (colours, skin weights, morph targets): each channel is
+   * refined with the same weights as the positions and comes back in the result's
+   * `attributes` under the same name.
+   */
+  attributes?: Record<string, AttributeChannel>;
+}
+
+/**
+ * One channel: `itemSize` floats per vertex (1 to 16), in vertex order. (`indices`, one value
+ * index per face corner for face-varying data such as UVs split at seams, is checked but refused
+ * by this version.)
+ */
+export interface AttributeChannel {
+  array: Float32Array;
+  itemSize: number;
+  indices?: Uint32Array;
+}
+
+/** How to subdivide. Every field is optional. */
+export interface SubdivideOptions {
+  /** One scheme for every level, or one per level. Default 'catmull-clark'. */
+  scheme?: SchemeName | SchemeName[];
+  /** Number of levels, a whole number from 0 to 32. Default 1, or the length of a `scheme` array. */
+  levels?: number;
+  /** What happens at boundary edges and vertices. Default 'edge-and-corner'. */
+  boundary?: BoundaryRule;
+  /** Refuse, before any work, when the result would have more faces than this. Default 16777216. */
+  maxFaces?: number;
+  /** Refuse, before any work, when the result's arrays would take more bytes. Default 1073741824 (1 GiB). */
+  maxBytes?: number;
+  /** Sharp edges (Catmull-Clark and Loop): vertex pairs, and one sharpness per pair or one for all (10 = infinitely sharp). */
+  creases?: { edges: Uint32Array; sharpness: Float32Array };
+  /** Sharp vertices: vertex indices, and one sharpness per vertex or one for all. */
+  corners?: { vertices: Uint32Array; sharpness: Float32Array };
+  /** Faces left out of the result (they still shape their neighbours). */
+  holes?: Uint32Array;
+  /** How semi-sharp creases decay from level to level. Default 'uniform'. */
+  creaseMethod?: 'uniform' | 'chaikin';
+  /** Catmull-Clark: OpenSubdiv's smooth-triangle rule. Default false. */
+  smoothTriangles?: boolean;
+}
+
+/** A polygon mesh with every field present, as `shape` returns it. */
+export interface PolygonMesh {
+  positions: Float32Array;
+  indices: Uint32Array;
+  faceSizes: Uint32Array;
+}
+
+/**
+ * The OpenSubdiv `t` tags of an OBJ file under the names and in the shapes `SubdivideOptions`
+ * takes, so that `subdivide(mesh, { ...mesh.tags, levels: 2 })` honours them (spread them last to
+ * let the file override your options). Indices are 0-based, into the mesh's vertices and faces.
+ */
+export interface ObjTags {
+  /** `t crease` lines: vertex pairs, one sharpness per pair, in file order; empty arrays without any. */
+  creases: { edges: Uint32Array; sharpness: Float32Array };
+  /** `t corner` lines: vertices, one sharpness per vertex, in file order; empty arrays without any. */
+  corners: { vertices: Uint32Array; sharpness: Float32Array };
+  /** `t hole` lines: faces, in file order; empty without any. */
+  holes: Uint32Array;
+  /** `t interpolateboundary` 0, 1 or 2. Absent when the file has no such tag. */
+  boundary?: 'none' | 'edge-and-corner' | 'edge-only';
+  /** `t creasemethod chaikin`. Absent when the file asks for the default, 'uniform' ('normal'), or has no such tag. */
+  creaseMethod?: 'chaikin';
+  /** `t smoothtriangles smooth`. Absent when the file asks for the default (false) or has no such tag. */
+  smoothTriangles?: true;
+}
+
+/** What `readObj` returns: the polygons of an OBJ file and its tags. */
+export interface ObjMesh extends PolygonMesh {
+  tags: ObjTags;
+}
+
+/**
+ * The refined mesh: arrays owned by the caller, fresh or (when passed back as `into`) written
+ * over by a later call.
+ */
+export interface SubdivideResult extends PolygonMesh {
+  /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */
+  triangles: Uint32Array;
+  /** The refined channels of `mesh.attributes`, by name; present when the mesh had some. */
+  attributes?: Record<string, AttributeChannel>;
+}
