@@ -1,5 +1,5 @@
 // The interfaces of subsurf's JS API. wasm-bindgen appends this file to the subsurf.d.ts it
-// generates (src/wasm.rs includes it as a typescript_custom_section), after the declarations of
+// generates (src/wasm/mod.rs includes it as a typescript_custom_section), after the declarations of
 // the exported functions and classes, which refer to these names.
 /**
  * Names accepted by `SubdivideOptions.scheme`. 'loop', 'sqrt3' and 'midpoint' take triangles
