@@ -10,7 +10,18 @@
 //
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
+//              [--fvar-linear MODE] [--no-positions]
 //              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
+//
+// Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
+// FVarLinearInterpolation: none, corners-only, corners-plus1, corners-plus2, boundaries, all) the
+// file's `vt` lines (u v) and the vt index of every face corner (`v/vt`, `v/vt/vn`, negative
+// indices too) become face-varying channel 0, refined level by level with
+// PrimvarRefinerReal<double>::InterpolateFaceVarying; the output then has `vt` lines (%.10g, ten
+// digits, as the tests compare to 1e-5: the last level's values in OpenSubdiv's order) and `f v/vt` corners. --no-positions leaves out the
+// `v` lines (the face-varying fixtures carry only what the position fixtures do not). The
+// shapes' own facevaryinginterpolateboundary and facevaryingpropagatecorners tags are ignored:
+// MODE decides.
 //
 // Boundary interpolation: --boundary wins; otherwise the file's `interpolateboundary` tag
 // (0 none, 1 edge-and-corner, 2 edge-only); otherwise edge-only, the default of OpenSubdiv's
@@ -54,6 +65,16 @@ struct Point3 {
     }
 };
 
+// A face-varying value (u, v) in double precision.
+struct Point2 {
+    double p[2];
+    void Clear(void * = nullptr) { p[0] = p[1] = 0.0; }
+    void AddWithWeight(Point2 const & src, double weight) {
+        p[0] += weight * src.p[0];
+        p[1] += weight * src.p[1];
+    }
+};
+
 struct Tag {
     std::string name;
     std::vector<int> ints;
@@ -66,6 +87,8 @@ struct Mesh {
     std::vector<double> positions;  // x y z per vertex
     std::vector<int> faceSizes;
     std::vector<int> faceIndices;   // 0-based
+    std::vector<double> uvs;        // u v per vt line
+    std::vector<int> uvIndices;     // 0-based, one per face corner; -1 where a corner has none
     std::vector<Tag> tags;
 };
 
@@ -113,10 +136,33 @@ Mesh readObj(std::string const & path) {
                 long index = v > 0 ? v - 1 : numVertices + v;
                 if (index < 0) fail(at(path, lineNo) + "relative index reaches before vertex 1");
                 mesh.faceIndices.push_back((int)index);
+                size_t slash = w.find('/');
+                std::string second = slash == std::string::npos ? "" : w.substr(slash + 1);
+                second = second.substr(0, second.find('/'));
+                if (second.empty()) {
+                    mesh.uvIndices.push_back(-1);
+                } else {
+                    long t = std::strtol(second.c_str(), &end, 10);
+                    if (*end != 0 || t == 0) fail(at(path, lineNo) + "'" + w + "' has a bad vt index");
+                    long numUvs = (long)mesh.uvs.size() / 2;
+                    long uv = t > 0 ? t - 1 : numUvs + t;
+                    if (uv < 0) fail(at(path, lineNo) + "relative vt index reaches before vt 1");
+                    mesh.uvIndices.push_back((int)uv);
+                }
                 ++count;
             }
             if (count < 3) fail(at(path, lineNo) + "a face needs at least 3 vertices");
             mesh.faceSizes.push_back(count);
+        } else if (kind == "vt") {
+            double uv[2];
+            for (double & c : uv) {
+                std::string w;
+                if (!(words >> w)) fail(at(path, lineNo) + "'vt' needs u v");
+                char * end = nullptr;
+                c = std::strtod(w.c_str(), &end);
+                if (*end != 0) fail(at(path, lineNo) + "'" + w + "' is not a number");
+            }
+            mesh.uvs.insert(mesh.uvs.end(), uv, uv + 2);
         } else if (kind == "t") {
             Tag tag;
             tag.line = lineNo;
@@ -149,6 +195,10 @@ Mesh readObj(std::string const & path) {
     for (int v : mesh.faceIndices)
         if (v >= numVertices) fail(path + ": a face refers to vertex " + std::to_string(v + 1) +
                                    " of " + std::to_string(numVertices));
+    int numUvs = (int)mesh.uvs.size() / 2;
+    for (int t : mesh.uvIndices)
+        if (t >= numUvs) fail(path + ": a face refers to vt " + std::to_string(t + 1) + " of " +
+                              std::to_string(numUvs));
     return mesh;
 }
 
@@ -163,6 +213,8 @@ void usage(int code) {
     std::fprintf(code ? stderr : stdout,
                  "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
+                 "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
+                 "                  [--no-positions]\n"
                  "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
@@ -173,7 +225,8 @@ int main(int argc, char ** argv) {
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
-    bool ignoreTags = false, quiet = false, noOutput = false;
+    bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false;
+    int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
 
@@ -198,6 +251,17 @@ int main(int argc, char ** argv) {
             else if (s == "edge-only") boundaryOverride = Sdc::Options::VTX_BOUNDARY_EDGE_ONLY;
             else if (s == "none") boundaryOverride = Sdc::Options::VTX_BOUNDARY_NONE;
             else fail("unknown boundary '" + s + "'");
+        } else if (arg == "--fvar-linear") {
+            std::string s = value();
+            if (s == "none") fvarMode = Sdc::Options::FVAR_LINEAR_NONE;
+            else if (s == "corners-only") fvarMode = Sdc::Options::FVAR_LINEAR_CORNERS_ONLY;
+            else if (s == "corners-plus1") fvarMode = Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1;
+            else if (s == "corners-plus2") fvarMode = Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2;
+            else if (s == "boundaries") fvarMode = Sdc::Options::FVAR_LINEAR_BOUNDARIES;
+            else if (s == "all") fvarMode = Sdc::Options::FVAR_LINEAR_ALL;
+            else fail("unknown --fvar-linear mode '" + s + "'");
+        } else if (arg == "--no-positions") {
+            noPositions = true;
         } else if (arg == "--ignore-tags") {
             ignoreTags = true;
         } else if (arg == "--time") {
@@ -239,7 +303,7 @@ int main(int argc, char ** argv) {
             continue;
         }
         if (t.name == "facevaryinginterpolateboundary" || t.name == "facevaryingpropagatecorners") {
-            continue;  // no face-varying data is read
+            continue;  // --fvar-linear decides the face-varying rules
         }
         if (t.name == "interpolateboundary") {
             if (t.ints.size() != 1) fail(where + "interpolateboundary needs one integer");
@@ -290,6 +354,13 @@ int main(int argc, char ** argv) {
     }
     if (boundaryOverride >= 0)
         sdcOptions.SetVtxBoundaryInterpolation((Sdc::Options::VtxBoundaryInterpolation)boundaryOverride);
+    bool fvar = fvarMode >= 0;
+    if (fvar) {
+        if (mesh.uvs.empty()) fail(input + ": --fvar-linear needs vt lines");
+        for (int t : mesh.uvIndices)
+            if (t < 0) fail(input + ": --fvar-linear needs a vt index on every face corner");
+        sdcOptions.SetFVarLinearInterpolation((Sdc::Options::FVarLinearInterpolation)fvarMode);
+    }
 
     Far::TopologyDescriptor desc;
     desc.numVertices = numVertices;
@@ -304,6 +375,13 @@ int main(int argc, char ** argv) {
     desc.cornerWeights = cornerWeights.data();
     desc.numHoles = (int)holes.size();
     desc.holeIndices = holes.data();
+    Far::TopologyDescriptor::FVarChannel uvChannel;
+    if (fvar) {
+        uvChannel.numValues = (int)mesh.uvs.size() / 2;
+        uvChannel.valueIndices = mesh.uvIndices.data();
+        desc.numFVarChannels = 1;
+        desc.fvarChannels = &uvChannel;
+    }
 
     typedef Far::TopologyRefinerFactory<Far::TopologyDescriptor> Factory;
     typedef std::chrono::steady_clock Clock;
@@ -356,6 +434,22 @@ int main(int argc, char ** argv) {
                      median(interpolateTimes), best(totalTimes), median(totalTimes));
     }
 
+    // Face-varying values, level by level (after any timing: they are not part of it).
+    std::vector<std::vector<Point2>> uvLevels;
+    if (fvar) {
+        uvLevels.assign(levels + 1, std::vector<Point2>());
+        uvLevels[0].resize(mesh.uvs.size() / 2);
+        for (size_t t = 0; t < uvLevels[0].size(); ++t)
+            for (int k = 0; k < 2; ++k) uvLevels[0][t].p[k] = mesh.uvs[2 * t + k];
+        Far::PrimvarRefinerReal<double> primvar(*refiner);
+        for (int level = 1; level <= levels; ++level) {
+            uvLevels[level].resize(refiner->GetLevel(level).GetNumFVarValues(0));
+            Point2 const * src = uvLevels[level - 1].data();
+            Point2 * dst = uvLevels[level].data();
+            primvar.InterpolateFaceVarying(level, src, dst, 0);
+        }
+    }
+
     if (noOutput) return 0;
     Far::TopologyLevel const & last = refiner->GetLevel(levels);
     std::vector<Point3> const & points = perLevel[levels];
@@ -366,12 +460,20 @@ int main(int argc, char ** argv) {
     }
     std::vector<char> buffer(1 << 20);
     std::setvbuf(out, buffer.data(), _IOFBF, buffer.size());
-    for (Point3 const & p : points) std::fprintf(out, "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
+    if (!noPositions)
+        for (Point3 const & p : points) std::fprintf(out, "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
+    if (fvar)
+        for (Point2 const & t : uvLevels[levels]) std::fprintf(out, "vt %.10g %.10g\n", t.p[0], t.p[1]);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (last.IsFaceHole(f)) continue;
         Far::ConstIndexArray fv = last.GetFaceVertices(f);
         std::fputc('f', out);
-        for (int k = 0; k < fv.size(); ++k) std::fprintf(out, " %d", fv[k] + 1);
+        if (fvar) {
+            Far::ConstIndexArray ft = last.GetFaceFVarValues(f, 0);
+            for (int k = 0; k < fv.size(); ++k) std::fprintf(out, " %d/%d", fv[k] + 1, ft[k] + 1);
+        } else {
+            for (int k = 0; k < fv.size(); ++k) std::fprintf(out, " %d", fv[k] + 1);
+        }
         std::fputc('\n', out);
     }
     if (std::fflush(out) != 0 || (out != stdout && std::fclose(out) != 0)) fail("write failed");
