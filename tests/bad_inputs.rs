@@ -12,11 +12,13 @@
 #[path = "common/bad_inputs.rs"]
 mod catalogue;
 
-use catalogue::{Case, Expect, Input, Stage, Val};
+use catalogue::{Case, Expect, Input, JsField, Stage, Val};
 use std::cell::Cell;
 use std::process::Command;
+use subsurf::attributes::Attribute;
 use subsurf::io::read_obj;
-use subsurf::{subdivide, Boundary, HalfEdgeMesh, Options, PolyMesh, Scheme};
+use subsurf::scheme::subdivide_with_attributes;
+use subsurf::{subdivide, Boundary, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 fn case(name: &str) -> Case {
     catalogue::catalogue()
@@ -126,6 +128,7 @@ fn rust_error(case: &Case) -> String {
             (_, Err(e)) => panic!("{name}: read_obj refused a valid file: {e}"),
             (_, Ok(mesh)) => mesh,
         },
+        Input::Channel(c) => return rust_channel_error(name, c),
         Input::ObjBytes(_) | Input::Js(_) => panic!("{name}: not a Rust API input"),
     };
     let options = match rust_options(case) {
@@ -149,6 +152,29 @@ fn rust_error(case: &Case) -> String {
             out.num_vertices(),
             out.num_faces()
         ),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// A channel case through `subdivide_with_attributes` on the catalogue's cube.
+fn rust_channel_error(name: &str, c: &catalogue::Channel) -> String {
+    let JsField::Float32(values) = &c.array else { panic!("{name}: not a Rust channel") };
+    let indices = match &c.indices {
+        None => None,
+        Some(JsField::Uint32(i)) => Some(i.clone()),
+        Some(other) => panic!("{name}: indices {other:?} are not a Rust channel"),
+    };
+    assert!(c.item_size.fract() == 0.0 && c.extra.is_none(), "{name}: not a Rust channel");
+    let channel = Attribute {
+        name: c.name.into(),
+        item_size: c.item_size as usize,
+        values: values.clone(),
+        indices,
+    };
+    let (positions, indices, face_sizes) = catalogue::cube();
+    let mesh = PolyMesh { positions, indices, face_sizes };
+    match subdivide_with_attributes(&mesh, &[channel], &Options::default(), &Tags::default()) {
+        Ok(_) => panic!("{name}: the channel was accepted"),
         Err(e) => e.to_string(),
     }
 }
@@ -205,7 +231,7 @@ fn run_cli(name: &str) {
         }
         Input::Obj(text) => text.clone().into_bytes(),
         Input::ObjBytes(bytes) => bytes.clone(),
-        Input::Js(_) => panic!("{name}: not a CLI input"),
+        Input::Js(_) | Input::Channel(_) => panic!("{name}: not a CLI input"),
     };
     std::fs::write(&input, bytes).unwrap();
     let mut args: Vec<String> = Vec::new();
@@ -336,6 +362,19 @@ cases! {
     obj_coordinate_not_a_number;
     obj_face_word_not_an_index;
     obj_face_repeats_a_vertex;
+    channel_wrong_length;
+    channel_not_a_multiple_of_item_size;
+    channel_item_size_zero;
+    channel_item_size_above_16;
+    channel_item_size_not_whole;
+    channel_array_of_the_wrong_type;
+    channel_nan;
+    channel_infinity;
+    channel_unknown_field;
+    channel_indices_wrong_length;
+    channel_indices_out_of_range;
+    channel_indices_of_the_wrong_type;
+    channel_face_varying_not_refined_yet;
     obj_valid_file_but_loop_on_a_quad;
 }
 

@@ -74,6 +74,21 @@ pub enum Input {
     ObjBytes(Vec<u8>),
     /// A JS mesh object that only JS can get wrong this way.
     Js(JsMesh),
+    /// The catalogue's cube with one attribute channel: `mesh.attributes[name]` in JS, an
+    /// `Attribute` in Rust (which cannot express every JS shape of a channel).
+    Channel(Channel),
+}
+
+/// One attribute channel as JS gives it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Channel {
+    pub name: &'static str,
+    /// A JS number: the Rust runner needs a whole one.
+    pub item_size: f64,
+    pub array: JsField,
+    pub indices: Option<JsField>,
+    /// An extra field (a typo), holding a copy of the item size.
+    pub extra: Option<&'static str>,
 }
 
 /// Where the input first fails.
@@ -87,6 +102,8 @@ pub enum Stage {
     Options,
     /// The mesh is valid, but subdividing it with these options is refused.
     Subdivide,
+    /// The mesh is valid, but one of its attribute channels is not.
+    Attributes,
 }
 
 /// What one runner must see.
@@ -263,6 +280,19 @@ pub fn to_obj(positions: &[f32], indices: &[u32], face_sizes: Option<&[u32]>) ->
 
 // ---------------------------------------------------------------------------------------------
 // The catalogue
+
+const NO_CLI_CHANNELS: &str =
+    "the command line reads channels only from OBJ vt lines, which come with face-varying support";
+const JS_ONLY_CHANNEL: &str = "an Attribute has a whole item size and f32 values";
+
+/// A channel of the cube (8 vertices, 24 face corners).
+fn channel(name: &'static str, item_size: f64, array: JsField, indices: Option<JsField>) -> Input {
+    Input::Channel(Channel { name, item_size, array, indices, extra: None })
+}
+
+fn attribute_case(name: &'static str, input: Input, fragments: &'static [&'static str]) -> Case {
+    Case::new(name, input, Stage::Attributes, fragments).cli(NA(NO_CLI_CHANNELS))
+}
 
 const NO_OBJ_PARTIAL: &str = "an OBJ 'v' line always has three coordinates";
 const NO_OBJ_SIZES: &str = "OBJ face lines carry their own sizes";
@@ -935,6 +965,97 @@ pub fn catalogue() -> Vec<Case> {
             obj_triangle_then("f 1 2 1"),
             Stage::Obj,
             &["OBJ line 4", "vertex 1 twice"],
+        ),
+        // -- attribute channels (the cube: 8 vertices, 24 face corners)
+        attribute_case(
+            "channel_wrong_length",
+            channel("color", 3.0, JsField::Float32(vec![0.5; 21]), None),
+            &["attribute 'color'", "7 values", "8 vertices"],
+        ),
+        attribute_case(
+            "channel_not_a_multiple_of_item_size",
+            channel("color", 3.0, JsField::Float32(vec![0.5; 23]), None),
+            &["attribute 'color'", "23 values", "multiple of itemSize 3"],
+        ),
+        attribute_case(
+            "channel_item_size_zero",
+            channel("w", 0.0, JsField::Float32(vec![]), None),
+            &["attribute 'w'", "itemSize", "1 to 16"],
+        ),
+        attribute_case(
+            "channel_item_size_above_16",
+            channel("w", 17.0, JsField::Float32(vec![0.0; 17 * 8]), None),
+            &["attribute 'w'", "itemSize", "17"],
+        ),
+        attribute_case(
+            "channel_item_size_not_whole",
+            channel("w", 2.5, JsField::Float32(vec![0.0; 20]), None),
+            &["attribute 'w'", "itemSize must be a whole number", "2.5"],
+        )
+        .rust(NA(JS_ONLY_CHANNEL)),
+        attribute_case(
+            "channel_array_of_the_wrong_type",
+            channel("color", 3.0, JsField::Float64(vec![0.5; 24]), None),
+            &["attributes.color.array must be a Float32Array", "Float64Array"],
+        )
+        .rust(NA(JS_ONLY_CHANNEL)),
+        attribute_case(
+            "channel_nan",
+            channel(
+                "w",
+                1.0,
+                JsField::Float32([vec![0.0; 5], vec![f32::NAN], vec![0.0; 2]].concat()),
+                None,
+            ),
+            &["attribute 'w'", "value 5", "NaN", "finite"],
+        ),
+        attribute_case(
+            "channel_infinity",
+            channel(
+                "w",
+                1.0,
+                JsField::Float32([vec![0.0; 2], vec![f32::INFINITY], vec![0.0; 5]].concat()),
+                None,
+            ),
+            &["attribute 'w'", "value 2", "inf"],
+        ),
+        attribute_case(
+            "channel_unknown_field",
+            Input::Channel(Channel {
+                name: "uv",
+                item_size: 2.0,
+                array: JsField::Float32(vec![0.0; 16]),
+                indices: None,
+                extra: Some("indice"),
+            }),
+            &["attribute 'uv'", "unknown channel field 'indice'", "did you mean 'indices'"],
+        )
+        .rust(NA(JS_ONLY_CHANNEL)),
+        attribute_case(
+            "channel_indices_wrong_length",
+            channel("uv", 2.0, JsField::Float32(vec![0.0; 8]), Some(JsField::Uint32(vec![0; 23]))),
+            &["attribute 'uv'", "23 indices", "24 face corners"],
+        ),
+        attribute_case(
+            "channel_indices_out_of_range",
+            channel(
+                "uv",
+                2.0,
+                JsField::Float32(vec![0.0; 8]),
+                Some(JsField::Uint32([vec![0; 23], vec![4]].concat())),
+            ),
+            &["attribute 'uv'", "index 23 is 4", "4 values (0..3)"],
+        ),
+        attribute_case(
+            "channel_indices_of_the_wrong_type",
+            channel("uv", 2.0, JsField::Float32(vec![0.0; 8]), Some(JsField::Int32(vec![0; 24]))),
+            &["attributes.uv.indices must be a Uint32Array", "Int32Array"],
+        )
+        .rust(NA(JS_ONLY_CHANNEL)),
+        attribute_case(
+            "channel_face_varying_not_refined_yet",
+            channel("uv", 2.0, JsField::Float32(vec![0.0; 8]), Some(JsField::Uint32(vec![0; 24]))),
+            &["attribute 'uv'", "face-varying", "not refined by this version"],
         ),
         Case::new(
             "obj_valid_file_but_loop_on_a_quad",

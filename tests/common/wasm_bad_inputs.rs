@@ -8,7 +8,7 @@ use super::*;
 #[path = "bad_inputs.rs"]
 pub(super) mod catalogue;
 
-use catalogue::{Case, Expect, Input, JsField, JsMesh, Stage, Val};
+use catalogue::{Case, Channel, Expect, Input, JsField, JsMesh, Stage, Val};
 
 fn js_value(value: &Val) -> JsValue {
     match value {
@@ -61,6 +61,24 @@ fn js_mesh_object(mesh: &JsMesh) -> JsValue {
         fields.push((extra, Uint32Array::from(&[4u32; 6][..]).into()));
     }
     object(&fields)
+}
+
+/// The catalogue's cube with `mesh.attributes = { [c.name]: channel }`.
+fn js_channel_mesh(c: &Channel) -> JsValue {
+    let mut fields = vec![("itemSize", JsValue::from_f64(c.item_size))];
+    if let Some(array) = js_field(&c.array) {
+        fields.push(("array", array));
+    }
+    if let Some(indices) = c.indices.as_ref().and_then(js_field) {
+        fields.push(("indices", indices));
+    }
+    if let Some(extra) = c.extra {
+        fields.push((extra, JsValue::from_f64(c.item_size)));
+    }
+    let (p, i, f) = cube_arrays();
+    let mesh = js_mesh(&p, &i, Some(&f));
+    Reflect::set(&mesh, &"attributes".into(), &object(&[(c.name, object(&fields))])).unwrap();
+    mesh
 }
 
 /// A copy of every typed array of a mesh object, to check it is unchanged afterwards.
@@ -130,6 +148,7 @@ fn run_case(case: &Case, fragments: &[&str]) {
             js_mesh(positions, indices, face_sizes.as_deref())
         }
         Input::Js(mesh) => js_mesh_object(mesh),
+        Input::Channel(c) => js_channel_mesh(c),
         Input::ObjBytes(_) => panic!("{name}: not a JS input"),
     };
     let before = snapshot(&mesh);
@@ -139,7 +158,7 @@ fn run_case(case: &Case, fragments: &[&str]) {
     }
     // The same refusal through BaseMesh: its constructor for a bad mesh, else its subdivide.
     match (case.stage, subsurf::wasm::BaseMesh::new(&mesh)) {
-        (Stage::Mesh, built) => {
+        (Stage::Mesh | Stage::Attributes, built) => {
             expect_error(name, "new BaseMesh", built.map(|b| b.num_faces().into()), fragments)
         }
         (_, Ok(base)) => {
