@@ -52,7 +52,7 @@ impl Scheme {
         }
     }
 
-    /// True for the schemes that follow [`Tags`] (creases, corners, holes): Catmull-Clark and
+    /// True for the schemes that follow [`crate::Tags`] (creases, corners, holes): Catmull-Clark and
     /// Loop use them, bilinear and midpoint carry them to the next level of a list.
     pub fn supports_tags(self) -> bool {
         matches!(self, Scheme::CatmullClark | Scheme::Loop | Scheme::Bilinear | Scheme::Midpoint)
@@ -104,7 +104,7 @@ pub struct Options {
     /// Refuse, before any work, when the last level would have more faces than this.
     pub max_faces: u64,
     /// Refuse, before any work, when the result's arrays would take more bytes than this
-    /// (see [`Prediction::bytes`]).
+    /// (see [`crate::predict::Prediction::bytes`]).
     pub max_bytes: u64,
 }
 

@@ -11,7 +11,7 @@ use std::borrow::Cow;
 /// cache-sized pieces without the arrays ever being stored whole (the wasm bindings do). The
 /// pieces, joined, are the arrays of [`Refined::into_poly`].
 ///
-/// The lifetime is the base mesh's when [`subdivide_mesh_borrowed`] made the result with a single
+/// The lifetime is the base mesh's when [`crate::scheme::subdivide_mesh_borrowed`] made the result with a single
 /// quad split (the base is then the parent its faces follow from); `'static` otherwise.
 pub struct Refined<'a> {
     form: Form<'a>,

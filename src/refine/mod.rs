@@ -23,7 +23,7 @@ use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules};
 pub trait PrimalSplit<R> {
     /// Corners of every child face.
     const FACE_SIZE: usize;
-    /// True when a last level's faces can stay implicit in the parent ([`crate::Refined`]).
+    /// True when a last level's faces can stay implicit in the parent ([`crate::refined::Refined`]).
     const IMPLICIT_FACES: bool;
     /// The new values of `parent` (positions or other vertex-varying data) in child vertex order.
     fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P;

@@ -35,7 +35,7 @@ pub fn refine_points<R: TriSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> Vec<[f
 }
 
 /// The new values in child vertex order (`V + E` of them), computed by `rules` from `parent`
-/// (as [`super::pqq::refine_points`]), built by pushes rather than zeroed and overwritten.
+/// (as [`super::pqq::refine_values`]), built by pushes rather than zeroed and overwritten.
 pub fn refine_values<R: TriSplitRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
