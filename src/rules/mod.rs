@@ -106,7 +106,7 @@ pub fn edge_ends(mesh: &HalfEdgeMesh, edge: u32, weight: f32, w: &mut impl Weigh
 }
 
 /// The midpoint of an edge.
-#[inline]
+#[inline(always)]
 pub fn edge_midpoint(mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
     edge_ends(mesh, edge, 0.5, w)
 }
@@ -207,7 +207,7 @@ fn ring_members<const INTERIOR: bool, const FACES: bool>(
 }
 
 /// Weights the other end of each boundary edge at `vertex` by `weight`.
-#[inline]
+#[inline(always)]
 pub(crate) fn boundary_ring(mesh: &HalfEdgeMesh, vertex: u32, weight: f32, w: &mut impl Weights) {
     let group = w.begin_group(weight);
     for &h in mesh.out_half_edges(vertex) {
@@ -260,7 +260,7 @@ pub(crate) fn fan(mesh: &HalfEdgeMesh, vertex: u32) -> Option<Ring> {
 /// The weights of a vertex with boundary edges under `boundary`; false (and nothing weighted)
 /// for an interior vertex, which the scheme's own smooth rule moves. Shared by every primal
 /// scheme.
-#[inline]
+#[inline(always)]
 pub(crate) fn boundary_vertex_rule(
     boundary: Boundary,
     mesh: &HalfEdgeMesh,
