@@ -22,10 +22,9 @@ impl<'a> PointSum<'a> {
     /// The point whose weights `rule` gives.
     #[inline(always)]
     pub fn eval(&mut self, rule: impl FnOnce(&mut Self)) -> [f32; 3] {
-        // A fresh local sum, which the optimiser keeps in registers.
-        let mut local = PointSum { sum: Vec3::ZERO, ..*self };
-        rule(&mut local);
-        local.sum.to_array()
+        self.sum = Vec3::ZERO;
+        rule(self);
+        self.sum.to_array()
     }
 }
 
