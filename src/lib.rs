@@ -39,6 +39,6 @@ pub mod wasm;
 
 pub use error::{Error, Result};
 pub use mesh::{HalfEdgeMesh, PolyMesh};
-pub use options::{Boundary, CreaseMethod};
+pub use options::{Boundary, CreaseMethod, FVarLinear};
 pub use scheme::{subdivide, subdivide_with_tags, Options, Scheme};
 pub use tags::{Corner, Crease, Tags};

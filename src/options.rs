@@ -106,6 +106,8 @@ pub struct Options {
     /// Refuse, before any work, when the result's arrays would take more bytes than this
     /// (see [`crate::predict::Prediction::bytes`]).
     pub max_bytes: u64,
+    /// Where face-varying channels (UVs) are linear rather than smooth.
+    pub fvar_linear: FVarLinear,
 }
 
 impl Default for Options {
@@ -115,6 +117,7 @@ impl Default for Options {
             boundary: Boundary::default(),
             max_faces: DEFAULT_MAX_FACES,
             max_bytes: DEFAULT_MAX_BYTES,
+            fvar_linear: FVarLinear::default(),
         }
     }
 }
@@ -127,6 +130,11 @@ impl Options {
 
     pub fn with_boundary(mut self, boundary: Boundary) -> Self {
         self.boundary = boundary;
+        self
+    }
+
+    pub fn with_fvar_linear(mut self, fvar_linear: FVarLinear) -> Self {
+        self.fvar_linear = fvar_linear;
         self
     }
 
@@ -176,6 +184,64 @@ impl Boundary {
             Boundary::Average => "average",
             Boundary::None => "none",
         }
+    }
+}
+
+/// Where a face-varying channel is interpolated linearly instead of smoothly: OpenSubdiv's
+/// `Sdc::Options::FVarLinearInterpolation`, named after USD's `faceVaryingLinearInterpolation`
+/// tokens. A face-varying channel has its own boundary wherever its values are split (a seam),
+/// besides the mesh's boundary; these modes say how sharp those boundaries are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FVarLinear {
+    /// Smooth everywhere, seams and corners included (`FVAR_LINEAR_NONE`).
+    None,
+    /// Sharp corners (a value of one face) only (`FVAR_LINEAR_CORNERS_ONLY`).
+    CornersOnly,
+    /// Sharp corners, and both values where a seam meets another seam, a sharp edge or a third
+    /// value (`FVAR_LINEAR_CORNERS_PLUS1`; USD's default, and ours).
+    #[default]
+    CornersPlus1,
+    /// As `corners-plus1`, and sharp darts and both values when either is a corner
+    /// (`FVAR_LINEAR_CORNERS_PLUS2`).
+    CornersPlus2,
+    /// Linear along every boundary and seam, smooth inside (`FVAR_LINEAR_BOUNDARIES`).
+    Boundaries,
+    /// Linear everywhere: the values of the bilinear scheme (`FVAR_LINEAR_ALL`).
+    All,
+}
+
+impl FVarLinear {
+    pub const ALL: &'static [FVarLinear] = &[
+        FVarLinear::None,
+        FVarLinear::CornersOnly,
+        FVarLinear::CornersPlus1,
+        FVarLinear::CornersPlus2,
+        FVarLinear::Boundaries,
+        FVarLinear::All,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            FVarLinear::None => "none",
+            FVarLinear::CornersOnly => "corners-only",
+            FVarLinear::CornersPlus1 => "corners-plus1",
+            FVarLinear::CornersPlus2 => "corners-plus2",
+            FVarLinear::Boundaries => "boundaries",
+            FVarLinear::All => "all",
+        }
+    }
+}
+
+impl FromStr for FVarLinear {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        parse_name("face-varying linear mode", s, FVarLinear::ALL, FVarLinear::name)
+    }
+}
+
+impl fmt::Display for FVarLinear {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 

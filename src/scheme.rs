@@ -6,7 +6,7 @@ use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 pub use crate::options::{
-    Boundary, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
+    Boundary, FVarLinear, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
 };
 use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{check_guards, predict, predict_counts, Prediction};

@@ -143,6 +143,7 @@ fn run(args: Args) -> Result<(), String> {
         boundary,
         max_faces: args.max_faces,
         max_bytes: args.max_bytes,
+        ..Options::default()
     };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();

@@ -52,6 +52,7 @@ pub(super) fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
         boundary: boundary.unwrap_or(defaults.boundary),
         max_faces: max_faces.unwrap_or(defaults.max_faces),
         max_bytes: max_bytes.unwrap_or(defaults.max_bytes),
+        fvar_linear: defaults.fvar_linear,
     };
     Ok((options, read_tags(&field)?))
 }
