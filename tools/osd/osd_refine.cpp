@@ -10,7 +10,7 @@
 //
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
-//              [--fvar-linear MODE] [--no-positions]
+//              [--fvar-linear MODE] [--no-positions] [--varying]
 //              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
 //
 // Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
@@ -28,6 +28,12 @@
 // regression suite (regression/common/far_utils.h, GetSdcOptions), for which these shapes were
 // written. --ignore-tags drops crease, corner, hole, creasemethod and smoothtriangles tags; it
 // keeps interpolateboundary (which --boundary overrides anyway).
+//
+// --varying interpolates the positions as varying data (PrimvarRefinerReal<double>::
+// InterpolateVarying): linearly on the scheme's topology, each child vertex of a vertex at the
+// vertex, of an edge at its midpoint, of a face at its centroid, whatever the sharpness. With
+// --scheme loop that is midpoint subdivision (Loop's topology, linear positions), which
+// OpenSubdiv has no scheme of its own for.
 //
 // --time R refines and interpolates R times and prints, to stderr, the best and median wall
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
@@ -214,7 +220,7 @@ void usage(int code) {
                  "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
                  "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
-                 "                  [--no-positions]\n"
+                 "                  [--no-positions] [--varying]\n"
                  "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
@@ -225,7 +231,7 @@ int main(int argc, char ** argv) {
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
-    bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false;
+    bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false, varying = false;
     int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
@@ -262,6 +268,8 @@ int main(int argc, char ** argv) {
             else fail("unknown --fvar-linear mode '" + s + "'");
         } else if (arg == "--no-positions") {
             noPositions = true;
+        } else if (arg == "--varying") {
+            varying = true;
         } else if (arg == "--ignore-tags") {
             ignoreTags = true;
         } else if (arg == "--time") {
@@ -408,7 +416,11 @@ int main(int argc, char ** argv) {
             perLevel[level].resize(refiner->GetLevel(level).GetNumVertices());
             Point3 const * src = perLevel[level - 1].data();
             Point3 * dst = perLevel[level].data();
-            primvar.Interpolate(level, src, dst);
+            if (varying) {
+                primvar.InterpolateVarying(level, src, dst);
+            } else {
+                primvar.Interpolate(level, src, dst);
+            }
         }
         Clock::time_point t3 = Clock::now();
         buildTime = seconds(t1 - t0);
