@@ -12,7 +12,7 @@ use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{check_guards, predict, predict_counts, Prediction};
 use crate::primvar::Rows;
 use crate::refine::dqq::{self, DualBoundary};
-use crate::refine::{quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
+use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
 use crate::rules::Sqrt3;
 use crate::rules::{
@@ -69,13 +69,15 @@ fn check_scheme(
             "boundary 'none' is defined for catmull-clark, loop and doo-sabin; use 'edge-and-corner', 'edge-only', 'fixed' or 'average' with {scheme}"
         )));
     }
-    if matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
-        dqq::check(mesh, scheme.name()).map_err(|e| match e {
-            Error::Unsupported(message) => at(message),
-            other => other,
-        })?;
-    }
-    Ok(())
+    let checked = match scheme {
+        Scheme::DooSabin | Scheme::Sqrt3 => dqq::check(mesh, scheme.name()),
+        Scheme::QuadTriangle => check_distinct_corners(mesh, scheme.name()),
+        _ => Ok(()),
+    };
+    checked.map_err(|e| match e {
+        Error::Unsupported(message) => at(message),
+        other => other,
+    })
 }
 
 fn tags_unsupported(scheme: Scheme, level: usize) -> Error {

@@ -294,8 +294,9 @@ cases! {
     index_u32_max;
     face_with_two_vertices;
     face_with_no_vertices;
-    face_repeats_a_neighbouring_vertex;
-    face_repeats_a_distant_vertex;
+    face_repeats_a_neighbouring_vertex_doo_sabin;
+    face_repeats_a_distant_vertex_quad_triangle;
+    face_repeats_a_vertex_sqrt3;
     nan_coordinate;
     infinite_coordinate;
     negative_infinite_coordinate;
@@ -361,7 +362,7 @@ cases! {
     obj_nan_coordinate;
     obj_coordinate_not_a_number;
     obj_face_word_not_an_index;
-    obj_face_repeats_a_vertex;
+    obj_face_repeats_a_vertex_doo_sabin;
     channel_wrong_length;
     channel_not_a_multiple_of_item_size;
     channel_item_size_zero;
@@ -493,11 +494,12 @@ fn absurd_level_counts_are_refused_without_overflow() {
     }
 }
 
-/// A single polygon with many corners: the repeated-vertex check of `from_faces` (and of the OBJ
-/// reader) compares each corner with every earlier one of its face, so one face of n corners
-/// costs n²/2 comparisons: 160,000 corners took 4.3 s here, a million would take minutes,
-/// which in a browser is a frozen page. A linear check (a per-vertex "last seen in face" mark)
-/// makes this instant.
+/// A single polygon with many corners: a repeated-vertex check that compares each corner with
+/// every earlier one of its face costs n²/2 comparisons for one face of n corners: 160,000
+/// corners took 4.3 s here, a million would take minutes, which in a browser is a frozen page.
+/// A linear check (a per-vertex "last seen in face" mark) makes this instant: in `from_faces`,
+/// which notes whether a face repeats a vertex, and in the refusal of the schemes that cannot
+/// take one, which names it.
 #[test]
 fn a_face_with_a_million_corners_is_checked_in_linear_time() {
     let n = 1_000_000u32;
@@ -508,11 +510,68 @@ fn a_face_with_a_million_corners_is_checked_in_linear_time() {
         })
         .collect();
     let indices: Vec<u32> = (0..n).collect();
+    let mut repeating = indices.clone();
+    repeating[n as usize - 1] = 1;
     let (done, wait) = std::sync::mpsc::channel();
     std::thread::spawn(move || {
-        let _ = done.send(HalfEdgeMesh::from_faces(&positions, &indices, &[n]).is_ok());
+        let built = HalfEdgeMesh::from_faces(&positions, &indices, &[n]);
+        let _ = done.send(built.is_ok_and(|m| !m.has_repeated_corners()));
+        let mesh = PolyMesh { positions, indices: repeating, face_sizes: vec![n] };
+        let refused = subdivide(&mesh, &Options::new(Scheme::DooSabin, 1)).map(|_| ());
+        let _ =
+            done.send(refused.is_err_and(|e| e.to_string().contains("face 0 repeats vertex 1")));
     });
     // Generous: a linear check takes well under a second even in a debug build.
-    let built = wait.recv_timeout(std::time::Duration::from_secs(20));
-    assert_eq!(built, Ok(true), "from_faces on one face of {n} corners did not finish in 20 s");
+    for what in ["from_faces", "the refusal of doo-sabin"] {
+        let ok = wait.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(ok, Ok(true), "{what} on one face of {n} corners did not finish in 20 s");
+    }
+}
+
+/// The catalogue's faces that repeat a vertex are refused only by the schemes that cannot take
+/// them: Catmull-Clark and bilinear (and Loop and midpoint on triangles) subdivide them, through
+/// the Rust API and the command line, as OpenSubdiv does.
+#[test]
+fn faces_that_repeat_a_vertex_are_accepted_by_the_primal_schemes() {
+    let cases: Vec<Case> =
+        catalogue::catalogue().into_iter().filter(|c| c.name.contains("repeats_a")).collect();
+    assert_eq!(cases.len(), 4);
+    for case in cases {
+        let mesh = match &case.input {
+            Input::Arrays { positions, indices, face_sizes } => PolyMesh {
+                positions: positions.clone(),
+                indices: indices.clone(),
+                face_sizes: face_sizes.clone().unwrap(),
+            },
+            Input::Obj(text) => read_obj(text).unwrap(),
+            other => panic!("{}: {other:?}", case.name),
+        };
+        let mut schemes = vec![Scheme::CatmullClark, Scheme::Bilinear];
+        if mesh.face_sizes.iter().all(|&n| n == 3) {
+            schemes.extend([Scheme::Loop, Scheme::Midpoint]);
+        }
+        for scheme in schemes {
+            let out = subdivide(&mesh, &Options::new(scheme, 2))
+                .unwrap_or_else(|e| panic!("{} {scheme}: {e}", case.name));
+            assert!(out.positions.iter().all(|x| x.is_finite()), "{} {scheme}", case.name);
+            assert!(out.num_faces() > 0, "{} {scheme}", case.name);
+        }
+        let dir = scratch_dir(case.name);
+        let (input, output) = (dir.join("input.obj"), dir.join("output.obj"));
+        let Input::Arrays { positions, indices, face_sizes } = &case.input else { continue };
+        std::fs::write(
+            &input,
+            catalogue::to_obj(positions, indices, face_sizes.as_deref()).unwrap(),
+        )
+        .unwrap();
+        let run = Command::new(env!("CARGO_BIN_EXE_subsurf"))
+            .args(["--scheme", "catmull-clark", "--levels", "2"])
+            .args([input.to_str().unwrap(), "-o", output.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}: {}", case.name, String::from_utf8_lossy(&run.stderr));
+        let written = read_obj(&std::fs::read_to_string(&output).unwrap()).unwrap();
+        assert_eq!(written.num_faces(), 4 * mesh.indices.len(), "{}", case.name);
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

@@ -143,7 +143,8 @@ fn validation_names_the_fault() {
         msg.contains("face 0") && msg.contains("indices[2]") && msg.contains("vertex 7"),
         "{msg}"
     );
-    assert!(error_of(&tri, &[0, 1, 1], &[3]).contains("face 0 uses vertex 1 twice"));
+    // A face may repeat a vertex (OpenSubdiv accepts it): not an error.
+    assert!(HalfEdgeMesh::from_faces(&tri, &[0, 1, 1], &[3]).unwrap().has_repeated_corners());
 }
 
 /// `from_vertices` keeps the arrays it is given and builds the same mesh as `from_faces`, with
@@ -157,17 +158,143 @@ fn from_vertices_is_from_faces_without_the_copies() {
         assert_eq!(kept.unwrap(), HalfEdgeMesh::from_poly(&poly).unwrap());
     }
     let tri = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
-    for (indices, sizes, expected) in [
-        (vec![0, 1, 3], vec![3], "refers to vertex 3"),
-        (vec![0, 1, 1], vec![3], "uses vertex 1 twice"),
-        (vec![0, 1, 2], vec![4], "sum to 4"),
-    ] {
+    for (indices, sizes, expected) in
+        [(vec![0, 1, 3], vec![3], "refers to vertex 3"), (vec![0, 1, 2], vec![4], "sum to 4")]
+    {
         let message = match HalfEdgeMesh::from_vertices(tri.clone(), indices.clone(), &sizes) {
             Err(e) => e.to_string(),
             Ok(_) => String::new(),
         };
         assert!(message.contains(expected), "{message}");
         assert!(error_of(tri.as_flattened(), &indices, &sizes).contains(expected));
+    }
+}
+
+/// Checks every invariant the module docs of `subsurf::mesh` promise, through the public API:
+/// each half-edge is listed by its edge and its from-vertex, an edge's half-edges are ascending,
+/// form its `next_around_edge` cycle and join its two vertices, a vertex lists a boundary
+/// half-edge first when it has one, and no cell has two half-edges on one edge.
+fn assert_valid(what: &str, m: &HalfEdgeMesh) {
+    let mut listed = vec![0usize; m.num_half_edges()];
+    for e in 0..m.num_edges() as u32 {
+        let hs = m.edge_half_edges(e).unwrap();
+        let [a, b] = m.edge_vertices(e).unwrap();
+        assert!(!hs.is_empty(), "{what}: edge {e} has no half-edge");
+        for (i, &h) in hs.iter().enumerate() {
+            let he = m.half_edge(h).unwrap();
+            listed[h as usize] += 1;
+            assert_eq!(he.edge_index(), e, "{what}: half-edge {h}");
+            assert_eq!(
+                he.next_around_edge().index(),
+                hs[(i + 1) % hs.len()],
+                "{what}: cycle of {e}"
+            );
+            let ends = [he.from_vertex_index(), he.to_vertex_index()];
+            assert!(ends == [a, b] || ends == [b, a], "{what}: half-edge {h} is not on edge {e}");
+        }
+    }
+    assert!(listed.iter().all(|&n| n == 1), "{what}: every half-edge on exactly one edge");
+    for c in m.cell_indices() {
+        let cell = m.cell(c).unwrap();
+        let mut h = cell.half_edge();
+        let mut edges = Vec::new();
+        for _ in 0..cell.num_vertices() {
+            assert_eq!(h.cell_index(), c, "{what}");
+            edges.push(h.edge_index());
+            h = h.next_in_cell();
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        assert_eq!(edges.len(), cell.num_vertices(), "{what}: cell {c} uses an edge twice");
+    }
+    let mut from = vec![0usize; m.num_half_edges()];
+    for v in m.vertex_indices() {
+        let vertex = m.vertex(v).unwrap();
+        for h in vertex.half_edges_from() {
+            assert_eq!(h.from_vertex_index(), v, "{what}");
+            from[h.index() as usize] += 1;
+        }
+        if vertex.half_edges_from().any(|h| h.is_boundary()) {
+            assert!(vertex.kth_half_edge_from(0).unwrap().is_boundary(), "{what}: vertex {v}");
+        }
+    }
+    assert!(from.iter().all(|&n| n == 1), "{what}: every half-edge leaves one vertex");
+}
+
+fn edges_of(m: &HalfEdgeMesh) -> Vec<([u32; 2], Vec<u32>)> {
+    (0..m.num_edges() as u32)
+        .map(|e| (m.edge_vertices(e).unwrap(), m.edge_half_edges(e).unwrap().to_vec()))
+        .collect()
+}
+
+/// A face that repeats a vertex, as OpenSubdiv's `Vtr` builds it: a half-edge from a vertex to
+/// itself is an edge of its own, a vertex pair that one face uses twice gets an edge per use,
+/// and those edges (with the shared one) are non-manifold; other faces share edges as usual.
+#[test]
+fn faces_that_repeat_a_vertex_split_their_edges_as_opensubdiv() {
+    let positions = [0.0; 3 * 6];
+    let build = |indices: &[u32], sizes: &[u32]| {
+        let m = HalfEdgeMesh::from_faces(&positions, indices, sizes).unwrap();
+        assert_valid(&format!("{indices:?}"), &m);
+        m
+    };
+    // Triangle (0, 1, 1): 0→1, the degenerate 1→1 and 1→0, each an edge of its own.
+    let m = build(&[0, 1, 1], &[3]);
+    assert_eq!(edges_of(&m), vec![([0, 1], vec![0]), ([1, 1], vec![1]), ([1, 0], vec![2])]);
+    assert!(m.has_repeated_corners() && m.has_non_manifold_edges());
+    assert_eq!(m.first_repeated_corner(), Some((0, 1)));
+    assert!(matches!(m.first_non_manifold(), Some(NonManifold::Edge { edge: 0, .. })));
+    // Quad (0, 1, 0, 2): both pairs are used twice, so four edges.
+    let m = build(&[0, 1, 0, 2], &[4]);
+    assert_eq!(m.num_edges(), 4);
+    assert_eq!(m.first_repeated_corner(), Some((0, 0)));
+    // A later face shares the pair's first edge: triangle (0, 1, 2), then the quad (1, 0, 3, 0)
+    // runs 1→0 on the triangle's edge and uses 0–3 twice.
+    let m = build(&[0, 1, 2, 1, 0, 3, 0], &[3, 4]);
+    let edges = edges_of(&m);
+    assert_eq!(edges.len(), 6);
+    assert_eq!(edges[0], ([0, 1], vec![0, 3]), "0–1 shared by both faces");
+    assert_eq!(&edges[3..], &[([0, 3], vec![4]), ([3, 0], vec![5]), ([0, 1], vec![6])][..]);
+    // A face that repeats a vertex in corners far apart (no pair twice, no degenerate edge):
+    // the edges are the usual ones, and the vertex has two fans.
+    let m = build(&[0, 1, 2, 0, 3, 4], &[6]);
+    assert_eq!(m.num_edges(), 6);
+    assert!(!m.has_non_manifold_edges());
+    assert_eq!(m.first_non_manifold(), Some(NonManifold::Vertex { vertex: 0 }));
+    // Closed up by two triangles, the same face is a sphere around a manifold vertex 0.
+    let m = build(&[0, 1, 2, 0, 3, 4, 0, 2, 1, 0, 4, 3], &[6, 3, 3]);
+    assert_eq!(m.num_edges(), 6);
+    assert_eq!(m.first_non_manifold(), None);
+    assert!(m.has_repeated_corners());
+    // A face of more than eight corners takes the linear check: (0..6, 0, 1, 2, 3) uses the
+    // pairs 0–1, 1–2 and 2–3 twice.
+    let m = build(&[0, 1, 2, 3, 4, 5, 0, 1, 2, 3], &[10]);
+    assert_eq!(m.num_edges(), 10);
+    assert_eq!(m.first_repeated_corner(), Some((0, 0)));
+}
+
+/// The OpenSubdiv shapes with faces that repeat a vertex give valid meshes, and so do their
+/// refined levels (the hosts keep the two halves of a degenerate edge apart).
+#[test]
+fn meshes_with_repeated_vertices_and_their_refinements_are_valid() {
+    use subsurf::refine::{pqq, ptq};
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/osd_nonmanifold");
+    for shape in ["catmark_nonman_edges", "catmark_nonman_quadpole8", "loop_nonman_edges"] {
+        let text = std::fs::read_to_string(dir.join(format!("{shape}.obj"))).unwrap();
+        let base = HalfEdgeMesh::from_poly(&subsurf::io::read_obj(&text).unwrap()).unwrap();
+        assert!(base.has_repeated_corners(), "{shape}");
+        assert_valid(shape, &base);
+        let (mut quads, mut tris) = (base.clone(), base.clone());
+        for level in 1..=2 {
+            quads = pqq::child_mesh(&quads, pqq::refine_points(&quads, &subsurf::rules::Bilinear));
+            assert_valid(&format!("{shape} quad split {level}"), &quads);
+            assert!(!quads.has_repeated_corners() && quads.has_non_manifold_edges());
+            if shape.starts_with("loop") {
+                tris = ptq::child_mesh(&tris, ptq::refine_points(&tris, &subsurf::rules::Midpoint));
+                assert_valid(&format!("{shape} triangle split {level}"), &tris);
+                assert!(!tris.has_repeated_corners() && tris.has_non_manifold_edges());
+            }
+        }
     }
 }
 

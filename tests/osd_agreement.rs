@@ -76,8 +76,12 @@ fn tagged_loop_matches_opensubdiv() {
 
 #[test]
 fn manifests_name_existing_files() {
-    for dir in ["tests/fixtures/osd", "tests/fixtures/osd_tagged", "tests/fixtures/osd_nonmanifold"]
-    {
+    for dir in [
+        "tests/fixtures/osd",
+        "tests/fixtures/osd_tagged",
+        "tests/fixtures/osd_nonmanifold",
+        "tests/fixtures/osd_nonmanifold_untagged",
+    ] {
         let dir = root().join(dir);
         let entries = read_manifest(&dir);
         assert!(!entries.is_empty(), "{}/MANIFEST.tsv lists no fixtures", dir.display());
@@ -95,7 +99,7 @@ fn manifests_name_existing_files() {
                 e.input
             );
             assert!(
-                ["catmark", "loop", "bilinear"].contains(&e.scheme.as_str()),
+                ["catmark", "loop", "bilinear", "midpoint"].contains(&e.scheme.as_str()),
                 "unknown scheme {}",
                 e.scheme
             );

@@ -27,8 +27,9 @@ pub struct ObjMesh {
     pub boundary: Option<Boundary>,
 }
 
-/// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, repeated vertices, NaN)
-/// happen here too, so that the error can name the line. `t` lines are skipped.
+/// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, indices, NaN) happen here
+/// too, so that the error can name the line. A face may repeat a vertex (as OpenSubdiv's
+/// regression shapes do; see [`crate::HalfEdgeMesh`]). `t` lines are skipped.
 pub fn read_obj(text: &str) -> Result<PolyMesh> {
     read(text, false).map(|obj| obj.mesh)
 }
@@ -88,7 +89,6 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
         }
     }
     let vertex_count = mesh.num_vertices();
-    let mut last_face = vec![u32::MAX; vertex_count];
     let mut start = 0usize;
     for (f, &n) in mesh.face_sizes.iter().enumerate() {
         let face = &mesh.indices[start..start + n as usize];
@@ -100,18 +100,6 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
                     bad as u64 + 1
                 ),
             ));
-        }
-        for &v in face {
-            // Linear in the face size: the face in which each vertex was last seen.
-            if std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32 {
-                return Err(obj_error(
-                    face_lines[f],
-                    format!(
-                        "face uses vertex {} twice; a face must not repeat a vertex",
-                        v as u64 + 1
-                    ),
-                ));
-            }
         }
         start += n as usize;
     }

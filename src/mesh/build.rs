@@ -13,9 +13,9 @@ pub(super) fn from_faces(
     indices: &[u32],
     face_sizes: &[u32],
 ) -> Result<HalfEdgeMesh> {
-    validate(positions, indices, face_sizes)?;
+    let repeated_corners = validate(positions, indices, face_sizes)?;
     let positions = positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
-    Ok(connect(positions, indices.to_vec(), face_sizes))
+    Ok(connect(positions, indices.to_vec(), face_sizes, repeated_corners))
 }
 
 /// [`from_faces`] taking the arrays it keeps: no copy of the positions or the index list.
@@ -24,12 +24,18 @@ pub(super) fn from_vertices(
     indices: Vec<u32>,
     face_sizes: &[u32],
 ) -> Result<HalfEdgeMesh> {
-    validate(positions.as_flattened(), &indices, face_sizes)?;
-    Ok(connect(positions, indices, face_sizes))
+    let repeated_corners = validate(positions.as_flattened(), &indices, face_sizes)?;
+    Ok(connect(positions, indices, face_sizes, repeated_corners))
 }
 
-/// The connectivity of valid cells.
-fn connect(positions: Vec<[f32; 3]>, indices: Vec<u32>, face_sizes: &[u32]) -> HalfEdgeMesh {
+/// The connectivity of valid cells; `repeated_corners` says whether some cell lists a vertex
+/// more than once (only then are edges split as the module docs of [`super`] say).
+fn connect(
+    positions: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    face_sizes: &[u32],
+    repeated_corners: bool,
+) -> HalfEdgeMesh {
     let num_vertices = positions.len();
 
     let mut cell_offsets = Vec::with_capacity(face_sizes.len() + 1);
@@ -55,6 +61,7 @@ fn connect(positions: Vec<[f32; 3]>, indices: Vec<u32>, face_sizes: &[u32]) -> H
         he_from: indices,
         he_cell,
         cell_size,
+        repeated_corners,
         ..HalfEdgeMesh::default()
     };
     mesh.vertex_offsets = vertex_offsets;
@@ -107,7 +114,9 @@ pub(crate) fn check_finite(positions: &[f32]) -> Result<()> {
     )))
 }
 
-fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()> {
+/// Checks the flat arrays; returns whether some face repeats a vertex (valid input: OpenSubdiv
+/// accepts such faces, see the module docs of [`super`]).
+fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<bool> {
     if !positions.len().is_multiple_of(3) {
         return Err(positions_not_in_threes(positions.len()));
     }
@@ -140,14 +149,12 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
     if indices.iter().fold(0, |m, &v| m.max(v)) < num_vertices as u32
         && uniform_faces_have_distinct_corners(indices, face_sizes)
     {
-        return Ok(());
+        return Ok(false);
     }
-    // Face by face, reporting the first face at fault. A repeated vertex: pairwise within a
-    // small face (no memory traffic), and for larger faces
-    // the face in which each vertex was last seen, a linear check, so that one face with a
-    // million corners costs a million steps, not half a trillion.
-    const PAIRWISE: usize = 8;
+    // Face by face, reporting the first face at fault, and noting whether a face repeats a
+    // vertex (see [`repeated_corner`]).
     let mut last_face = Vec::new();
+    let mut repeats = false;
     let mut start = 0usize;
     for (f, &n) in face_sizes.iter().enumerate() {
         let n = n as usize;
@@ -163,24 +170,33 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<()
                 num_vertices - 1
             )));
         }
-        let repeated = if n <= PAIRWISE {
-            (1..n).find_map(|k| face[..k].contains(&face[k]).then_some(face[k]))
-        } else {
-            if last_face.is_empty() {
-                last_face = vec![u32::MAX; num_vertices];
-            }
-            face.iter()
-                .copied()
-                .find(|&v| std::mem::replace(&mut last_face[v as usize], f as u32) == f as u32)
-        };
-        if let Some(v) = repeated {
-            return Err(Error::mesh(format!(
-                "face {f} uses vertex {v} twice; a face must not repeat a vertex"
-            )));
+        if !repeats {
+            repeats = repeated_corner(face, f as u32, num_vertices, &mut last_face).is_some();
         }
         start += n;
     }
-    Ok(())
+    Ok(repeats)
+}
+
+/// The first vertex that `face` (face number `f`, every index below `num_vertices`) lists a
+/// second time. Pairwise within a small face (no memory traffic); for larger faces through
+/// `last_face`, the face in which each vertex was last seen (allocated on first use, shared by
+/// the calls for one mesh, faces in ascending order), so that one face with a million corners
+/// costs a million steps, not half a trillion.
+pub(crate) fn repeated_corner(
+    face: &[u32],
+    f: u32,
+    num_vertices: usize,
+    last_face: &mut Vec<u32>,
+) -> Option<u32> {
+    const PAIRWISE: usize = 8;
+    if face.len() <= PAIRWISE {
+        return (1..face.len()).find_map(|k| face[..k].contains(&face[k]).then_some(face[k]));
+    }
+    if last_face.is_empty() {
+        *last_face = vec![u32::MAX; num_vertices];
+    }
+    face.iter().copied().find(|&v| std::mem::replace(&mut last_face[v as usize], f) == f)
 }
 
 /// The error for a position array whose length is not a multiple of 3.
@@ -215,6 +231,8 @@ struct Edges {
     edge_vertices: Vec<[u32; 2]>,
     edge_offsets: Vec<u32>,
     edge_half_edges: Vec<u32>,
+    /// [`HalfEdgeMesh::marked_non_manifold`]: empty unless some edge is marked.
+    marked: Vec<bool>,
     non_manifold: bool,
     boundary: bool,
 }
@@ -229,6 +247,7 @@ impl Edges {
             edge_vertices: Vec::with_capacity(num_half_edges / 2 + 1),
             edge_offsets,
             edge_half_edges: Vec::with_capacity(num_half_edges),
+            marked: Vec::new(),
             non_manifold: false,
             boundary: false,
         }
@@ -242,8 +261,12 @@ impl Edges {
 /// vertices; every later half-edge of the edge is then already numbered and skipped. Returns
 /// whether any edge is a boundary edge.
 fn build_edges(mesh: &mut HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> bool {
-    let edges =
-        manifold_edges(mesh, he_to, out_to).unwrap_or_else(|| general_edges(mesh, he_to, out_to));
+    let edges = if mesh.repeated_corners {
+        edges_of_repeating_cells(mesh, he_to, out_to)
+    } else {
+        manifold_edges(mesh, he_to, out_to).unwrap_or_else(|| general_edges(mesh, he_to, out_to))
+    };
+    mesh.marked_non_manifold = edges.marked;
     mesh.he_edge = edges.he_edge;
     mesh.he_next_around_edge = edges.he_next_around_edge;
     mesh.edge_vertices = edges.edge_vertices;
@@ -344,6 +367,71 @@ fn general_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
     edges
 }
 
+/// The edges of a mesh in which some cell repeats a vertex, split as OpenSubdiv's `Vtr` splits
+/// them (see the module docs of [`super`]) and numbered as the other paths number theirs, in the
+/// order of their lowest half-edge. Each half-edge from a vertex to itself is an edge of its own;
+/// of the half-edges on one vertex pair, the first of each cell share an edge, and each later
+/// one of a cell gets an edge of its own when the walk reaches it. Those edges, and the shared
+/// edge of a pair that some cell uses twice, are marked non-manifold.
+fn edges_of_repeating_cells(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
+    /// Not numbered yet, and to get an edge of its own: a later use of a pair in one cell.
+    const OWN_EDGE: u32 = u32::MAX - 1;
+    let mut edges = Edges::with_capacity(he_to.len());
+    let mut marked = Vec::with_capacity(he_to.len() / 2 + 1);
+    let mut pair = Vec::new();
+    for (h, (&a, &b)) in mesh.he_from.iter().zip(he_to).enumerate() {
+        let state = edges.he_edge[h];
+        if state != u32::MAX && state != OWN_EDGE {
+            continue;
+        }
+        let e = edges.edge_vertices.len() as u32;
+        edges.edge_vertices.push([a, b]);
+        let start = edges.edge_half_edges.len();
+        if a == b || state == OWN_EDGE {
+            edges.edge_half_edges.push(h as u32);
+            marked.push(true);
+        } else {
+            // Every half-edge between a and b; the counting sort left each outgoing list
+            // ascending, so `h` (the lowest) comes first.
+            pair.clear();
+            for (from, to) in [(a, b), (b, a)] {
+                let same_pair = out_with_to(mesh, out_to, from).filter(|&(t, _)| t == to);
+                pair.extend(same_pair.map(|(_, g)| g));
+            }
+            pair.sort_unstable();
+            // A cell's half-edges are contiguous, so its uses of the pair are neighbours here.
+            let mut last_cell = u32::MAX;
+            let mut split = false;
+            for &g in &pair {
+                let c = mesh.cell_of(g);
+                if c == last_cell {
+                    edges.he_edge[g as usize] = OWN_EDGE;
+                    split = true;
+                } else {
+                    last_cell = c;
+                    edges.edge_half_edges.push(g);
+                }
+            }
+            marked.push(split);
+        }
+        let list = &edges.edge_half_edges[start..];
+        edges.non_manifold |= marked[e as usize]
+            || list.len() > 2
+            || (list.len() == 2
+                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
+        edges.boundary |= list.len() == 1;
+        for (i, &g) in list.iter().enumerate() {
+            edges.he_edge[g as usize] = e;
+            edges.he_next_around_edge[g as usize] = list[(i + 1) % list.len()];
+        }
+        edges.edge_offsets.push(edges.edge_half_edges.len() as u32);
+    }
+    if marked.contains(&true) {
+        edges.marked = marked;
+    }
+    edges
+}
+
 /// The seed's contract: `kth_half_edge_from(0)` is a boundary half-edge when the vertex has one.
 fn put_boundary_half_edges_first(mesh: &mut HalfEdgeMesh) {
     for v in 0..mesh.num_vertices() {
@@ -364,13 +452,16 @@ fn put_boundary_half_edges_first(mesh: &mut HalfEdgeMesh) {
 /// arithmetic uses this instead of [`from_faces`], which would merge two child edges that happen
 /// to join the same two vertices (as OpenSubdiv keeps them apart). Only counting sorts: each
 /// edge lists its half-edges in ascending order, each vertex its outgoing ones, a boundary one
-/// first. The input must describe valid cells (at least 3 distinct vertices each).
+/// first. The input must describe valid cells (at least 3 distinct vertices each, no two
+/// half-edges of a cell on one edge). `marked_non_manifold` is
+/// [`HalfEdgeMesh::marked_non_manifold`] (empty, or one flag per edge).
 pub(crate) fn from_cells_and_edges(
     positions: Vec<[f32; 3]>,
     cell_offsets: Vec<u32>,
     he_from: Vec<u32>,
     he_edge: Vec<u32>,
     num_edges: usize,
+    marked_non_manifold: Vec<bool>,
 ) -> HalfEdgeMesh {
     let nh = he_from.len();
     let cell_size = uniform_cell_size(&cell_offsets);
@@ -381,7 +472,7 @@ pub(crate) fn from_cells_and_edges(
     let (edge_offsets, edge_half_edges) = counting_sort(&he_edge, num_edges);
     let mut he_next_around_edge = vec![0u32; nh];
     let mut edge_vertices = vec![[0u32; 2]; num_edges];
-    let mut non_manifold = false;
+    let mut non_manifold = !marked_non_manifold.is_empty();
     for e in 0..num_edges {
         let list = &edge_half_edges[edge_offsets[e] as usize..edge_offsets[e + 1] as usize];
         for (i, &h) in list.iter().enumerate() {
@@ -399,6 +490,7 @@ pub(crate) fn from_cells_and_edges(
     mesh.edge_offsets = edge_offsets;
     mesh.edge_half_edges = edge_half_edges;
     mesh.non_manifold_edges = non_manifold;
+    mesh.marked_non_manifold = marked_non_manifold;
 
     let num_vertices = mesh.positions.len();
     let (vertex_offsets, vertex_half_edges) = counting_sort(&mesh.he_from, num_vertices);
@@ -462,44 +554,54 @@ mod tests {
         from_faces(&positions, indices, sizes).err().map(|e| e.to_string()).unwrap_or_default()
     }
 
+    /// True when the mesh of these faces (over 12 vertices) has a cell that repeats a vertex.
+    fn repeats(indices: &[u32], sizes: &[u32]) -> bool {
+        let positions = vec![0.0; 3 * 12];
+        from_faces(&positions, indices, sizes).is_ok_and(|m| m.repeated_corners)
+    }
+
     /// Faces up to eight corners are checked pairwise, larger ones with the last-seen array;
-    /// both must find the repeat and name it, and neither may mistake a vertex shared by two
-    /// faces for one.
+    /// both must find the repeat, and neither may mistake a vertex shared by two faces for one.
     #[test]
     fn repeated_vertices_are_found_in_small_and_large_faces() {
         let ten: Vec<u32> = (0..10).collect();
         let mut twice = ten.clone();
         twice[7] = 3;
-        assert!(
-            error(&[ten.clone(), twice].concat(), &[10, 10]).contains("face 1 uses vertex 3 twice")
-        );
-        assert!(error(&[0, 1, 2, 3, 4, 5, 6, 2], &[8]).contains("face 0 uses vertex 2 twice"));
+        assert!(repeats(&[ten.clone(), twice].concat(), &[10, 10]));
+        assert!(repeats(&[0, 1, 2, 3, 4, 5, 6, 2], &[8]));
         let mut reversed = ten.clone();
         reversed.reverse();
         let shared = [ten, reversed, vec![0, 1, 2, 3, 4, 5, 6, 7]].concat();
         assert_eq!(error(&shared, &[10, 10, 8]), "");
+        assert!(!repeats(&shared, &[10, 10, 8]));
     }
 
     /// All-quad and all-triangle meshes take the whole-array checks first; a fault in any corner
-    /// position must still reach the face-by-face report, naming the first faulty face.
+    /// position must still reach the face-by-face report, naming the first faulty face, and a
+    /// repeated vertex in any corner must still be noticed.
     #[test]
     fn uniform_meshes_report_every_fault() {
         let quads = [0, 1, 2, 3, 4, 5, 6, 7];
         assert_eq!(error(&quads, &[4, 4]), "");
+        assert!(!repeats(&quads, &[4, 4]));
         for k in 4..8 {
             let mut repeated = quads;
             repeated[k] = quads[4 + (k + 1) % 4];
-            assert!(error(&repeated, &[4, 4]).contains("face 1 uses vertex"), "corner {k}");
+            assert!(repeats(&repeated, &[4, 4]), "corner {k}");
             let mut outside = quads;
             outside[k] = 12;
             assert!(error(&outside, &[4, 4]).contains("face 1 (indices["), "corner {k}");
         }
         let triangles = [0, 1, 2, 3, 4, 5];
         assert_eq!(error(&triangles, &[3, 3]), "");
+        assert!(!repeats(&triangles, &[3, 3]));
         for k in 3..6 {
             let mut repeated = triangles;
             repeated[k] = triangles[3 + (k + 1) % 3];
-            assert!(error(&repeated, &[3, 3]).contains("face 1 uses vertex"), "corner {k}");
+            assert!(repeats(&repeated, &[3, 3]), "corner {k}");
+            let mut outside = triangles;
+            outside[k] = 12;
+            assert!(error(&outside, &[3, 3]).contains("face 1 (indices["), "corner {k}");
         }
         let mut positions = vec![0.0; 3 * 12];
         positions[7] = f32::NAN;

@@ -7,6 +7,14 @@
 //! direction, is represented as it is (non-manifold), as the seed `002` allows. A boundary edge
 //! has a cycle of one.
 //!
+//! A cell may list a vertex more than once (OpenSubdiv accepts such faces). Then, as OpenSubdiv's
+//! `Vtr` does, a half-edge from a vertex to itself (adjacent corners with one vertex) is an edge
+//! of its own, and a cell never has two half-edges on one edge: a later use of a vertex pair
+//! within the cell that already uses it gets an edge of its own. Both kinds are non-manifold
+//! edges although their half-edges do not show it (a flag per edge says so), and so is the edge
+//! that the cell's first use of such a pair is on. In refined meshes two edges may join the same
+//! two vertices too (a host keeps the halves of a parent edge apart, as OpenSubdiv does).
+//!
 //! The query API follows the seed's names in Rust style; see [`VertexRef`], [`HalfEdgeRef`] and
 //! [`CellRef`]. Entry points that take an index return `Option`, so a bad index is never a panic.
 
@@ -53,6 +61,15 @@ pub struct HalfEdgeMesh {
     /// refined meshes (the children of such a vertex are such vertices; no others appear), so
     /// the plain Catmull-Clark and Loop rules never need to check.
     pub(crate) multi_fan_vertices: bool,
+    /// Edges that are non-manifold although their half-edges do not show it (see the module
+    /// docs): an edge from a vertex to itself, the edges of a vertex pair that one cell uses
+    /// more than once, and in refined meshes the halves of such edges (as OpenSubdiv tags them).
+    /// One flag per edge, or empty when there is none: only meshes with a cell that repeats a
+    /// vertex, and their refinements, pay for it.
+    pub(crate) marked_non_manifold: Vec<bool>,
+    /// True when some cell lists a vertex more than once. Set by the builder; refined meshes
+    /// never have such cells.
+    pub(crate) repeated_corners: bool,
     /// 3 or 4 when every cell has that many corners, else 0 (see [`uniform_cell_size`]).
     pub(crate) cell_size: u32,
 }
@@ -114,17 +131,24 @@ impl HalfEdgeMesh {
 
     /// Builds a mesh from cells whose edges are already numbered (see
     /// [`build::from_cells_and_edges`]); for refinement hosts, which pass on whether the parent
-    /// had vertices with several fans.
+    /// had vertices with several fans, and which edges are marked non-manifold.
     pub(crate) fn from_cells_and_edges(
         positions: Vec<[f32; 3]>,
         cell_offsets: Vec<u32>,
         he_from: Vec<u32>,
         he_edge: Vec<u32>,
         num_edges: usize,
+        marked_non_manifold: Vec<bool>,
         multi_fan_vertices: bool,
     ) -> Self {
-        let mut mesh =
-            build::from_cells_and_edges(positions, cell_offsets, he_from, he_edge, num_edges);
+        let mut mesh = build::from_cells_and_edges(
+            positions,
+            cell_offsets,
+            he_from,
+            he_edge,
+            num_edges,
+            marked_non_manifold,
+        );
         mesh.multi_fan_vertices = multi_fan_vertices && !mesh.non_manifold_edges;
         mesh
     }
@@ -303,12 +327,33 @@ impl HalfEdgeMesh {
         self.non_manifold_edges || self.multi_fan_vertices
     }
 
-    /// True when edge `e` has more than two half-edges, or two running the same way.
+    /// True when edge `e` has more than two half-edges, or two running the same way, or is marked
+    /// non-manifold (an edge from a vertex to itself, or one of a pair a cell uses twice, or a
+    /// half of one; see the module docs).
     #[inline]
     pub(crate) fn is_non_manifold_edge(&self, e: u32) -> bool {
         let hs = &self.edge_half_edges[self.edge_range(e as usize)];
         hs.len() > 2
             || (hs.len() == 2 && self.he_from[hs[0] as usize] == self.he_from[hs[1] as usize])
+            || self.marked_non_manifold.get(e as usize).copied().unwrap_or(false)
+    }
+
+    /// True when some cell lists a vertex more than once (OpenSubdiv accepts such faces, and
+    /// so do Catmull-Clark, Loop, bilinear and midpoint here; see the module docs).
+    pub fn has_repeated_corners(&self) -> bool {
+        self.repeated_corners
+    }
+
+    /// The first cell that lists a vertex more than once, with that vertex.
+    pub fn first_repeated_corner(&self) -> Option<(u32, u32)> {
+        if !self.repeated_corners {
+            return None;
+        }
+        let mut last_cell = Vec::new();
+        self.cell_indices().find_map(|c| {
+            let corners = &self.he_from[self.cell_range(c as usize)];
+            build::repeated_corner(corners, c, self.num_vertices(), &mut last_cell).map(|v| (c, v))
+        })
     }
 
     /// The first place the mesh is not a 2-manifold, if any.

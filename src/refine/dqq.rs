@@ -52,8 +52,16 @@ pub fn child_counts(vertices: u64, edges: u64, half_edges: u64, cells: u64) -> [
 
 /// Refuses meshes the dual split cannot take.
 pub fn check(mesh: &HalfEdgeMesh, scheme: &str) -> Result<()> {
+    super::check_distinct_corners(mesh, scheme)?;
     match mesh.first_non_manifold() {
         None => Ok(()),
+        Some(NonManifold::Edge { edge, from, to })
+            if mesh.marked_non_manifold.get(edge as usize) == Some(&true) =>
+        {
+            Err(Error::Unsupported(format!(
+                "{scheme} needs a manifold mesh, but the edge between vertices {from} and {to} descends from a face that repeats a vertex (a non-manifold edge); use catmull-clark or loop, which treat such edges as creases"
+            )))
+        }
         Some(NonManifold::Edge { from, to, .. }) => Err(Error::Unsupported(format!(
             "{scheme} needs a manifold mesh, but the edge between vertices {from} and {to} has more than two faces (or two facing the same way); use catmull-clark or loop, which treat such edges as creases"
         ))),

@@ -13,9 +13,34 @@ pub mod ptq;
 pub mod quad_tri;
 pub mod sqrt3;
 
+use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
 use crate::primvar::Primvar;
 use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules};
+
+/// Refuses a mesh with a cell that repeats a vertex, naming the first, for `scheme`, which
+/// cannot take one (Doo-Sabin, √3, Quad/Triangle).
+pub(crate) fn check_distinct_corners(mesh: &HalfEdgeMesh, scheme: &str) -> Result<()> {
+    match mesh.first_repeated_corner() {
+        None => Ok(()),
+        Some((face, vertex)) => Err(Error::Unsupported(format!(
+            "face {face} repeats vertex {vertex}; {scheme} needs faces with distinct vertices; use catmull-clark, loop or bilinear"
+        ))),
+    }
+}
+
+/// The marks of a primal split's child edges ([`HalfEdgeMesh::marked_non_manifold`]): the
+/// halves `2e`, `2e + 1` of a marked parent edge `e` are marked, the other `num_child_edges - 2E`
+/// (inside the parent cells) are not; empty when the parent has no mark.
+pub(crate) fn child_marks(mesh: &HalfEdgeMesh, num_child_edges: usize) -> Vec<bool> {
+    if mesh.marked_non_manifold.is_empty() {
+        return Vec::new();
+    }
+    let mut marks = Vec::with_capacity(num_child_edges);
+    marks.extend(mesh.marked_non_manifold.iter().flat_map(|&m| [m, m]));
+    marks.resize(num_child_edges, false);
+    marks
+}
 
 /// What a level driver needs of a primal split whatever its rule set `R`: the per-level plumbing
 /// (new values, child faces, the parent of each child face for leaving out holes, the child mesh

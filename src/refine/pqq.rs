@@ -165,6 +165,11 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
             4 * mesh.next_in_cell(x) + 3
         }
     };
+    // An edge from a vertex to itself (a face that repeats a vertex) has both ends at one
+    // vertex: its one half-edge starts on half 2e and ends on half 2e + 1. So the half at the
+    // to-end of a half-edge goes by direction (the edge's first vertex is not its from-vertex),
+    // which on any other edge is the half at its to-vertex, and a half with one half-edge is
+    // its own cycle.
 
     let he_from = child_face_indices(mesh);
     // Four entries per parent half-edge, collected in place rather than written into zeroed
@@ -174,17 +179,20 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         .map(|h| {
             let (a, p) = corner(h);
             let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
-            [half_at(e, a), 2 * ne + h, 2 * ne + p, half_at(d, a)]
+            let p_end =
+                2 * d + (mesh.edge_vertices[d as usize][0] == mesh.he_from[p as usize]) as u32;
+            [half_at(e, a), 2 * ne + h, 2 * ne + p, p_end]
         })
         .collect();
     let he_next_around_edge: Vec<[u32; 4]> = (0..nh)
         .map(|h| {
             let (a, p) = corner(h);
+            let around_p = mesh.he_next_around_edge[p as usize];
             [
                 child_at(mesh.he_next_around_edge[h as usize], a),
                 4 * mesh.next_in_cell(h) + 2,
                 4 * p + 1,
-                child_at(mesh.he_next_around_edge[p as usize], a),
+                if around_p == p { 4 * h + 3 } else { child_at(around_p, a) },
             ]
         })
         .collect();
@@ -215,7 +223,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         let (near_a, near_b) = out.split_at_mut(parent.len());
         for (i, &x) in parent.iter().enumerate() {
             near_a[i] = child_at(x, a);
-            near_b[i] = child_at(x, b);
+            // From a vertex to itself: the one half-edge's to-end.
+            near_b[i] = if a == b { 4 * mesh.next_in_cell(x) + 3 } else { child_at(x, b) };
         }
     }
     for (h, pair) in inner_lists.chunks_exact_mut(2).enumerate() {
@@ -267,6 +276,8 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         // The halves of a non-manifold edge are non-manifold; inner edges never are.
         non_manifold_edges: mesh.non_manifold_edges,
         multi_fan_vertices: mesh.multi_fan_vertices,
+        marked_non_manifold: super::child_marks(mesh, (2 * ne + nh) as usize),
+        repeated_corners: false,
         // Every child cell is a quad (none when the parent has no cells).
         cell_size: if nh > 0 { 4 } else { 0 },
     }

@@ -72,38 +72,37 @@ pub fn triangle_children([a, b, c]: [u32; 3], [e0, e1, e2]: [u32; 3]) -> [u32; 1
 /// the module docs say. The mesh must be all triangles.
 pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh {
     let ne = mesh.num_edges() as u32;
-    let half_at = |e: u32, a: u32| 2 * e + (mesh.edge_vertices[e as usize][0] != a) as u32;
     let he_from = child_face_indices(mesh);
     let mut he_edge = vec![0u32; 4 * mesh.num_half_edges()];
     for (t, out) in he_edge.chunks_exact_mut(12).enumerate() {
         let h = 3 * t;
-        let [a, b, c] = [mesh.he_from[h], mesh.he_from[h + 1], mesh.he_from[h + 2]];
-        let [e0, e1, e2] = [mesh.he_edge[h], mesh.he_edge[h + 1], mesh.he_edge[h + 2]];
+        // The halves of each corner's edge at its from-end and at its to-end.
+        let [[a0, a1], [b0, b1], [c0, c1]] = [h, h + 1, h + 2].map(|x| halves(mesh, x));
         let inner = 2 * ne + 3 * t as u32;
         let (i01, i12, i20) = (inner, inner + 1, inner + 2);
-        out.copy_from_slice(&[
-            // (a, e0, e2): a→e0, e0→e2, e2→a
-            half_at(e0, a),
-            i20,
-            half_at(e2, a),
-            // (e0, b, e1): e0→b, b→e1, e1→e0
-            half_at(e0, b),
-            half_at(e1, b),
-            i01,
-            // (e2, e1, c): e2→e1, e1→c, c→e2
-            i12,
-            half_at(e1, c),
-            half_at(e2, c),
-            // (e1, e2, e0): e1→e2, e2→e0, e0→e1
-            i12,
-            i20,
-            i01,
-        ]);
+        // Child k's half-edges in order, as the module docs list the children: (a, e0, e2) is
+        // a→e0, e0→e2, e2→a; (e0, b, e1) is e0→b, b→e1, e1→e0; (e2, e1, c) is e2→e1, e1→c,
+        // c→e2; the middle (e1, e2, e0) is e1→e2, e2→e0, e0→e1.
+        out.copy_from_slice(&[a0, i20, c1, a1, b0, i01, i12, b1, c0, i12, i20, i01]);
     }
     let cells = (0..=4 * mesh.num_cells() as u32).map(|c| 3 * c).collect();
     let num_edges = 2 * mesh.num_edges() + 3 * mesh.num_cells();
+    let marked = super::child_marks(mesh, num_edges);
     let multi_fan = mesh.multi_fan_vertices;
-    HalfEdgeMesh::from_cells_and_edges(positions, cells, he_from, he_edge, num_edges, multi_fan)
+    HalfEdgeMesh::from_cells_and_edges(
+        positions, cells, he_from, he_edge, num_edges, marked, multi_fan,
+    )
+}
+
+/// The child edges of parent half-edge `h`'s edge `e` at `h`'s from-end and at its to-end: `2e`
+/// and `2e + 1` when `h` runs from the edge's first vertex, else the other way round. By
+/// direction rather than by vertex, so that the two halves of an edge from a vertex to itself
+/// are told apart.
+#[inline(always)]
+pub(crate) fn halves(mesh: &HalfEdgeMesh, h: usize) -> [u32; 2] {
+    let e = mesh.he_edge[h];
+    let backward = (mesh.edge_vertices[e as usize][0] != mesh.he_from[h]) as u32;
+    [2 * e + backward, 2 * e + 1 - backward]
 }
 
 /// The child level's tags (see [`crate::rules::crease`]) for `child`, [`child_mesh`] of `mesh`:

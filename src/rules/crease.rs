@@ -217,10 +217,12 @@ impl LevelTags {
         }
         for (e, s) in edges.iter_mut().enumerate() {
             let count = mesh.edge_offsets[e + 1] - mesh.edge_offsets[e];
-            if count == 1 {
+            // A marked edge (from a face that repeats a vertex) may have one half-edge.
+            let non_manifold_edge = mesh.non_manifold_edges && mesh.is_non_manifold_edge(e as u32);
+            if count == 1 || non_manifold_edge {
                 *s = SHARPNESS_INFINITE;
-            } else if mesh.non_manifold_edges && mesh.is_non_manifold_edge(e as u32) {
-                *s = SHARPNESS_INFINITE;
+            }
+            if non_manifold_edge {
                 let [a, b] = mesh.edge_vertices[e];
                 non_manifold[a as usize] = true;
                 non_manifold[b as usize] = true;

@@ -311,15 +311,17 @@ pub(crate) fn interior_ring(
     (!boundary_vertex_rule(boundary, mesh, vertex, &ring, w)).then_some(ring)
 }
 
-/// True when `edge` has exactly two half-edges running opposite ways: the only kind of edge a
-/// smooth edge rule applies to. Boundary and non-manifold edges are sharp creases.
+/// True when `edge` has exactly two half-edges running opposite ways and is not marked
+/// non-manifold: the only kind of edge a smooth edge rule applies to. Boundary and non-manifold
+/// edges are sharp creases.
 #[inline(always)]
 pub(crate) fn smooth_edge(mesh: &HalfEdgeMesh, edge: u32) -> Option<[u32; 2]> {
     match mesh.edge_half_edges[mesh.edge_range(edge as usize)] {
         // Without non-manifold edges, two half-edges always run opposite ways.
         [h0, h1]
             if !mesh.non_manifold_edges
-                || mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize] =>
+                || (mesh.he_from[h0 as usize] != mesh.he_from[h1 as usize]
+                    && mesh.marked_non_manifold.get(edge as usize) != Some(&true)) =>
         {
             Some([h0, h1])
         }

@@ -399,20 +399,33 @@ pub fn catalogue() -> Vec<Case> {
             &["face 0 has 0 vertices"],
         )
         .cli(E(&["OBJ line 4", "face has 0 vertices"])),
+        // A face may repeat a vertex (OpenSubdiv accepts it: catmull-clark, loop, bilinear and
+        // midpoint do too); the schemes that cannot take it refuse it.
         Case::new(
-            "face_repeats_a_neighbouring_vertex",
+            "face_repeats_a_neighbouring_vertex_doo_sabin",
             arrays(points(3), vec![0, 1, 1], vec![3]),
-            Stage::Mesh,
-            &["face 0 uses vertex 1 twice"],
+            Stage::Subdivide,
+            &[
+                "level 1: face 0 repeats vertex 1",
+                "doo-sabin needs faces with distinct vertices",
+                "use catmull-clark, loop or bilinear",
+            ],
         )
-        .cli(E(&["OBJ line 4", "vertex 2 twice"])),
+        .opt("scheme", Str("doo-sabin")),
         Case::new(
-            "face_repeats_a_distant_vertex",
+            "face_repeats_a_distant_vertex_quad_triangle",
             cube_with(|_, i, _| i[10] = 0),
-            Stage::Mesh,
-            &["face 2 uses vertex 0 twice"],
+            Stage::Subdivide,
+            &["face 2 repeats vertex 0", "quad-triangle needs faces with distinct vertices"],
         )
-        .cli(E(&["OBJ line 11", "vertex 1 twice"])),
+        .opt("scheme", Str("quad-triangle")),
+        Case::new(
+            "face_repeats_a_vertex_sqrt3",
+            arrays(points(4), vec![0, 1, 2, 2, 1, 1], vec![3, 3]),
+            Stage::Subdivide,
+            &["face 1 repeats vertex 1", "sqrt3 needs faces with distinct vertices"],
+        )
+        .opt("scheme", Str("sqrt3")),
         // -- coordinates
         Case::new(
             "nan_coordinate",
@@ -961,11 +974,12 @@ pub fn catalogue() -> Vec<Case> {
             &["OBJ line 4", "'three' is not a face index"],
         ),
         Case::new(
-            "obj_face_repeats_a_vertex",
+            "obj_face_repeats_a_vertex_doo_sabin",
             obj_triangle_then("f 1 2 1"),
-            Stage::Obj,
-            &["OBJ line 4", "vertex 1 twice"],
-        ),
+            Stage::Subdivide,
+            &["face 0 repeats vertex 0", "doo-sabin needs faces with distinct vertices"],
+        )
+        .opt("scheme", Str("doo-sabin")),
         // -- attribute channels (the cube: 8 vertices, 24 face corners)
         attribute_case(
             "channel_wrong_length",

@@ -162,6 +162,10 @@ pub enum Set {
     Tagged,
     /// `tests/fixtures/osd_nonmanifold/`: the non-manifold shapes, read as `Tagged`.
     NonManifold,
+    /// `tests/fixtures/osd_nonmanifold_untagged/`: the non-manifold shapes, read as `Untagged`,
+    /// with rows for the linear schemes too (`bilinear`; `midpoint`, which OpenSubdiv made as
+    /// Loop's topology with positions interpolated as varying data).
+    NonManifoldUntagged,
 }
 
 impl Set {
@@ -170,7 +174,29 @@ impl Set {
             Set::Untagged => "tests/fixtures/osd",
             Set::Tagged => "tests/fixtures/osd_tagged",
             Set::NonManifold => "tests/fixtures/osd_nonmanifold",
+            Set::NonManifoldUntagged => "tests/fixtures/osd_nonmanifold_untagged",
         })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Set::Untagged => "untagged",
+            Set::Tagged => "tagged",
+            Set::NonManifold => "non-manifold",
+            Set::NonManifoldUntagged => "non-manifold untagged",
+        }
+    }
+}
+
+/// Our scheme for a manifest's scheme column: OpenSubdiv's `catmark`, `loop` and `bilinear`, and
+/// `midpoint` (Loop's topology, linear positions).
+pub fn our_scheme(manifest_scheme: &str) -> Scheme {
+    match manifest_scheme {
+        "catmark" => Scheme::CatmullClark,
+        "loop" => Scheme::Loop,
+        "bilinear" => Scheme::Bilinear,
+        "midpoint" => Scheme::Midpoint,
+        other => panic!("unknown manifest scheme {other}"),
     }
 }
 
@@ -201,7 +227,7 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
     let text = std::fs::read_to_string(&input_path)
         .map_err(|e| format!("cannot read {}: {e}", input_path.display()))?;
     let (input, ours, holes) = match set {
-        Set::Untagged => {
+        Set::Untagged | Set::NonManifoldUntagged => {
             let input = read_obj(&text).map_err(|e| format!("{}: {e}", input_path.display()))?;
             let options = Options::new(scheme, entry.level).with_boundary(manifest_boundary);
             let ours = subdivide(&input, &options).map_err(|e| format!("subdivide failed: {e}"))?;
@@ -254,7 +280,8 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
     };
     let reference = read_fixture(&set.dir().join(&entry.fixture));
 
-    let loop_scheme = entry.scheme == "loop";
+    // Loop and midpoint split triangles; the others split into quads.
+    let loop_scheme = entry.scheme == "loop" || entry.scheme == "midpoint";
     let base_of = base_faces(&input.face_sizes, entry.level, loop_scheme);
     let is_hole = |full: usize| holes[base_of[full]];
     // Our triangle split orders children as OpenSubdiv's Loop does: face i is face i.
@@ -441,11 +468,7 @@ pub fn run_group(
             Err(message) => failures.push(format!("{}: {message}", entry.label())),
         }
     }
-    let set_name = match set {
-        Set::Untagged => "untagged",
-        Set::Tagged => "tagged",
-        Set::NonManifold => "non-manifold",
-    };
+    let set_name = set.name();
     println!(
         "osd_agreement {set_name} {scheme} vs {osd_scheme} {boundary_name}: {} comparisons on {} shapes, {} passed, {} failed; closest pass to the tolerance: \
          {:.3} x tolerance ({})",

@@ -191,6 +191,39 @@ fn bad_input_catalogue_through_the_js_api() {
     assert!(pending.is_empty(), "pending JS cases: {pending:?}");
 }
 
+/// The catalogue's faces that repeat a vertex, which Doo-Sabin, √3 and Quad/Triangle refuse,
+/// are subdivided by Catmull-Clark and bilinear (and on triangles by Loop and midpoint), as
+/// OpenSubdiv does: a result with the expected face count.
+#[wasm_bindgen_test]
+fn faces_that_repeat_a_vertex_are_accepted_by_the_primal_schemes() {
+    let mut ran = 0;
+    for case in catalogue::catalogue().into_iter().filter(|c| c.name.contains("repeats_a")) {
+        let (mesh, sizes) = match &case.input {
+            Input::Arrays { positions, indices, face_sizes } => {
+                let sizes = face_sizes.clone().unwrap();
+                (js_mesh(positions, indices, Some(&sizes)), sizes)
+            }
+            Input::Obj(text) => (read_obj(&JsValue::from_str(text)).unwrap(), vec![3]),
+            other => panic!("{}: {other:?}", case.name),
+        };
+        let mut schemes = vec![("catmull-clark", 4), ("bilinear", 4)];
+        if sizes.iter().all(|&n| n == 3) {
+            schemes.extend([("loop", 3), ("midpoint", 3)]);
+        }
+        let corners: u32 = sizes.iter().sum();
+        for (scheme, size) in schemes {
+            let options = object(&[("scheme", scheme.into()), ("levels", 1.into())]);
+            let out = subdivide(&mesh, &options)
+                .unwrap_or_else(|e| panic!("{} {scheme}: {}", case.name, message(e)));
+            let indices: Uint32Array = field(&out, "indices").dyn_into().unwrap();
+            let faces = if size == 4 { corners } else { 4 * sizes.len() as u32 };
+            assert_eq!(indices.length(), size * faces, "{} {scheme}", case.name);
+            ran += 1;
+        }
+    }
+    assert!(ran >= 10, "only {ran} calls ran");
+}
+
 /// The guard refuses from the prediction, before any work: the message gives the predicted
 /// face count and names the option, and the same instance then subdivides at the limit.
 #[wasm_bindgen_test]
