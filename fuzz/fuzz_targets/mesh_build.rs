@@ -1,12 +1,13 @@
 //! `HalfEdgeMesh::from_faces` on arbitrary arrays: it accepts exactly the valid ones (an
-//! independent validator decides), refuses the others with an `InvalidMesh` message, and an
-//! accepted mesh has consistent connectivity and gives its arrays back.
+//! independent validator decides; a face may repeat a vertex), refuses the others with an
+//! `InvalidMesh` message, and an accepted mesh has consistent connectivity, knows whether a face
+//! repeats a vertex, and gives its arrays back.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use subsurf::{Error, HalfEdgeMesh};
-use subsurf_fuzz::{check_connectivity, check_error, is_valid, MAX_ELEMENTS};
+use subsurf_fuzz::{check_connectivity, check_error, is_valid, repeats_a_vertex, MAX_ELEMENTS};
 
 #[derive(Arbitrary, Debug)]
 enum Positions {
@@ -75,6 +76,9 @@ fuzz_target!(|input: Input| {
             let same_bits =
                 poly.positions.iter().zip(&positions).all(|(a, b)| a.to_bits() == b.to_bits());
             assert!(same_bits && poly.positions.len() == positions.len(), "positions changed");
+            let repeats = repeats_a_vertex(&poly);
+            assert_eq!(mesh.has_repeated_corners(), repeats, "repeated corners");
+            assert_eq!(mesh.first_repeated_corner().is_some(), repeats, "first repeated corner");
             check_connectivity(&mesh);
         }
         Err(e) => {

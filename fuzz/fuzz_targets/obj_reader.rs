@@ -5,7 +5,9 @@
 use libfuzzer_sys::fuzz_target;
 use subsurf::io::{read_obj, write_obj};
 use subsurf::{subdivide, Error, HalfEdgeMesh, Options, Scheme};
-use subsurf_fuzz::{check_connectivity, check_error, check_poly, MAX_ELEMENTS, MAX_FACES};
+use subsurf_fuzz::{
+    check_connectivity, check_error, check_poly, check_result, MAX_ELEMENTS, MAX_FACES,
+};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
@@ -19,7 +21,7 @@ fuzz_target!(|data: &[u8]| {
                 let options =
                     Options { max_faces: MAX_FACES, ..Options::new(Scheme::CatmullClark, 1) };
                 match subdivide(&mesh, &options) {
-                    Ok(out) => check_poly(&out, "catmull-clark of an OBJ mesh"),
+                    Ok(out) => check_result(&out, "catmull-clark of an OBJ mesh"),
                     Err(e) => {
                         assert!(matches!(e, Error::TooLarge(_)), "catmull-clark refused: {e}")
                     }

@@ -1,8 +1,10 @@
 //! Every scheme, one or two levels, every boundary rule, on small fuzzed meshes that are valid
-//! (distinct in-range corners, finite positions) but of any topology: open, non-manifold,
-//! mis-oriented, mixed face sizes, isolated vertices. A call either returns a valid mesh, no
-//! larger than predicted and inside the input's bounding box, or refuses with `Unsupported` or
-//! `TooLarge`; never a panic and never an invalid intermediate mesh. The same call with attribute
+//! (in-range corners, finite positions) but of any topology: open, non-manifold, mis-oriented,
+//! mixed face sizes, isolated vertices, and (with `repeats`) faces that repeat a vertex, next to
+//! each other or far apart. A call either returns a valid mesh whose faces never repeat a vertex,
+//! no larger than predicted and inside the input's bounding box, or refuses with `Unsupported`
+//! or `TooLarge` (Doo-Sabin, √3 and Quad/Triangle refuse a face that repeats a vertex; the
+//! primal schemes take it); never a panic and never an invalid intermediate mesh. The same call with attribute
 //! channels: the x coordinate as a channel stays the x coordinate of every refined vertex and
 //! the positions do not change; a fuzzed extra channel (any size, values or indices) is refined
 //! or refused with `InvalidAttribute` or `Unsupported`.
@@ -13,7 +15,7 @@ use libfuzzer_sys::fuzz_target;
 use subsurf::attributes::Attribute;
 use subsurf::scheme::{predict_counts, subdivide_with_attributes};
 use subsurf::{subdivide, Boundary, Error, HalfEdgeMesh, Options, PolyMesh, Scheme};
-use subsurf_fuzz::{check_error, check_poly, MAX_ELEMENTS, MAX_FACES};
+use subsurf_fuzz::{check_error, check_result, repeats_a_vertex, MAX_ELEMENTS, MAX_FACES};
 
 #[derive(Arbitrary, Debug)]
 struct Input {
@@ -23,6 +25,8 @@ struct Input {
     second: Option<u8>,
     boundary: u8,
     extra: Option<Channel>,
+    /// Keep a face's corners as they come (a vertex may repeat) instead of dropping repeats.
+    repeats: bool,
 }
 
 #[derive(Arbitrary, Debug)]
@@ -46,7 +50,7 @@ fuzz_target!(|input: Input| {
         let mut corners: Vec<u32> = Vec::new();
         for &c in face.iter().take(8) {
             let v = c as u32 % n as u32;
-            if !corners.contains(&v) {
+            if input.repeats || !corners.contains(&v) {
                 corners.push(v);
             }
         }
@@ -72,7 +76,13 @@ fuzz_target!(|input: Input| {
     match result {
         Ok(out) if faceless_doo_sabin && out.positions.is_empty() => {}
         Ok(out) => {
-            check_poly(&out, &what);
+            check_result(&out, &what);
+            let refusing = [Scheme::DooSabin, Scheme::Sqrt3, Scheme::QuadTriangle];
+            assert!(
+                !(repeats_a_vertex(&mesh) && refusing.contains(&options.schemes[0])),
+                "{what}: a face repeats a vertex, but {} took it",
+                options.schemes[0]
+            );
             assert!(out.num_faces() as u64 <= predicted_faces, "{what}: more faces than predicted");
             assert!(
                 out.num_vertices() as u64 <= predicted_vertices,
@@ -129,7 +139,11 @@ fn check_attributes(
             let x = &refined[0];
             assert_eq!(x.len(), out.num_vertices(), "{what}: one x per vertex");
             for (p, got) in out.positions.chunks_exact(3).zip(&x.values) {
-                assert!((p[0] - got).abs() <= 1e-4 * (1.0 + p[0].abs()), "{what}: x {got} vs {}", p[0]);
+                assert!(
+                    (p[0] - got).abs() <= 1e-4 * (1.0 + p[0].abs()),
+                    "{what}: x {got} vs {}",
+                    p[0]
+                );
             }
         }
         (Err(e), Err(expected)) if !fuzzed => assert_eq!(&e, expected, "{what}"),

@@ -9,7 +9,8 @@ pub const MAX_ELEMENTS: usize = 64;
 /// The memory guard the targets use: a few thousand faces at most per execution.
 pub const MAX_FACES: u64 = 4096;
 
-/// An independent statement of what `HalfEdgeMesh::from_faces` accepts.
+/// An independent statement of what `HalfEdgeMesh::from_faces` accepts. A face may repeat a
+/// vertex (OpenSubdiv accepts such faces).
 pub fn is_valid(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> bool {
     if positions.is_empty() || positions.len() % 3 != 0 {
         return false;
@@ -27,14 +28,26 @@ pub fn is_valid(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> bool 
         if n < 3 || face.iter().any(|&i| i as usize >= vertices) {
             return false;
         }
-        for (k, v) in face.iter().enumerate() {
-            if face[..k].contains(v) {
-                return false;
-            }
-        }
         start += n as usize;
     }
     true
+}
+
+/// True when some face lists a vertex twice.
+pub fn repeats_a_vertex(mesh: &PolyMesh) -> bool {
+    let mut start = 0;
+    mesh.face_sizes.iter().any(|&n| {
+        let face = &mesh.indices[start..start + n as usize];
+        start += n as usize;
+        (1..face.len()).any(|k| face[..k].contains(&face[k]))
+    })
+}
+
+/// A subdivision result: a well-formed polygon mesh whose faces never repeat a vertex (every
+/// scheme's faces join distinct points, even when the input's faces repeat one).
+pub fn check_result(mesh: &PolyMesh, what: &str) {
+    check_poly(mesh, what);
+    assert!(!repeats_a_vertex(mesh), "{what}: a face of the result repeats a vertex");
 }
 
 /// A well-formed polygon mesh: what every result and every accepted OBJ file must be.
@@ -77,6 +90,17 @@ pub fn check_connectivity(mesh: &HalfEdgeMesh) {
             assert!(steps <= mesh.num_half_edges(), "half-edge {h}: edge cycle does not close");
         }
         assert_eq!(he.is_boundary(), steps == 1);
+        // No cell has two half-edges on one edge (a face that uses a pair twice gets an edge
+        // per use, as OpenSubdiv builds it).
+        let mut g = he.next_in_cell();
+        while g.index() != h {
+            assert_ne!(
+                g.edge_index(),
+                he.edge_index(),
+                "half-edge {h}: its cell uses its edge twice"
+            );
+            g = g.next_in_cell();
+        }
     }
     for v in mesh.vertex_indices() {
         let vertex = mesh.vertex(v).unwrap();
