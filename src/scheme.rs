@@ -248,15 +248,26 @@ fn refine_levels<'a>(
     let levels = options.schemes.len();
     for (level, &scheme) in options.schemes.iter().enumerate() {
         check_scheme(&mesh, scheme, boundary, level)?;
+        // Quad/Triangle is Loop on triangles (Stam & Loop's rules reduce to Loop's there; see
+        // `rules::quad_triangle`), and the children of triangles are triangles: a mesh of
+        // triangles takes Loop's host and rules from here, the tagged path included, so that
+        // non-manifold edges and vertices follow the crease rules and child edges stay apart
+        // as in Loop. (User tags are still refused for Quad/Triangle above.)
+        let on_triangles = |s: Scheme| match s {
+            Scheme::QuadTriangle if mesh.cell_size == 3 => Scheme::Loop,
+            s => s,
+        };
+        let scheme = on_triangles(scheme);
         let last = level + 1 == levels;
         if level_tags.is_none() && scheme.supports_tags() {
             // The tagged path: for the user's tags (base level), and for what only the crease
             // rules handle: boundary 'none', non-manifold input, smooth triangles. Decided for
             // the run of levels that carry tags from here on (bilinear and midpoint carry them
             // to a later Catmull-Clark or Loop level), on this level's mesh.
-            let run = options.schemes[level..].iter().take_while(|s| s.supports_tags());
+            let run = options.schemes[level..].iter().map(|&s| on_triangles(s));
+            let run = run.take_while(|s| s.supports_tags());
             let (mut creased, mut catmull_clark) = (false, false);
-            for &s in run {
+            for s in run {
                 creased |= matches!(s, Scheme::CatmullClark | Scheme::Loop);
                 catmull_clark |= s == Scheme::CatmullClark;
             }

@@ -140,6 +140,19 @@ fn linear_schemes_match_opensubdiv_on_non_manifold_shapes() {
     assert_repeated_vertex_shapes_ran(&shapes);
 }
 
+/// Quad/Triangle is Loop on a mesh of triangles, non-manifold ones included: every Loop row
+/// of both sets but those whose faces repeat a vertex (which Quad/Triangle refuses).
+#[test]
+fn quad_triangle_matches_opensubdiv_loop_on_non_manifold_triangle_shapes() {
+    let loop_rows = |e: &Entry| {
+        let shape = shape_name(&e.input);
+        (e.scheme == "loop" && !REPEATED_VERTEX_SHAPES.contains(&shape.as_str()))
+            .then_some(Scheme::QuadTriangle)
+    };
+    compare_rows(Set::NonManifold, "non-manifold tagged, quad-triangle", 9, loop_rows);
+    compare_rows(Set::NonManifoldUntagged, "non-manifold untagged, quad-triangle", 18, loop_rows);
+}
+
 /// Doo-Sabin, √3 and Quad/Triangle cannot take a face that repeats a vertex: they refuse it,
 /// naming the face and the vertex, and say what to use instead; Catmull-Clark, Loop, bilinear
 /// and midpoint take the same meshes.

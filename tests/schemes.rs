@@ -225,6 +225,75 @@ fn loop_reproduces_box_spline_masks_on_a_regular_grid() {
     assert_eq!(checked, ((n - 1) * (n - 1)) as usize + interior_edges);
 }
 
+/// Quad/Triangle's own rules (its host, [`subsurf::refine::quad_tri`], with
+/// [`subsurf::rules::QuadTriangle`]) are Loop's on a manifold mesh of triangles, every boundary
+/// rule: one level, vertex by vertex (the two hosts number child vertices alike). `subdivide`
+/// runs Loop itself for Quad/Triangle on triangles (see
+/// `quad_triangle_is_loop_on_every_triangle_mesh`), so this is where the triangle rules, which
+/// mixed meshes use, are checked against Loop.
+#[test]
+fn quad_triangle_rules_are_loop_rules_on_triangles() {
+    use subsurf::refine::quad_tri;
+    use subsurf::rules::QuadTriangle;
+    for mode in [Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average] {
+        for (name, mesh) in triangle_meshes() {
+            let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
+            let qt = quad_tri::refine(&he, &QuadTriangle { boundary: mode });
+            let lp = run(&mesh, Scheme::Loop, 1, mode).unwrap();
+            assert_eq!((&qt.indices, &qt.face_sizes), (&lp.indices, &lp.face_sizes), "{name}");
+            for (i, (p, q)) in qt.positions.iter().zip(&lp.positions).enumerate() {
+                assert!((p - q).abs() < 1e-5, "{name} {mode}: coordinate {i}: {p} vs {q}");
+            }
+        }
+    }
+}
+
+/// Quad/Triangle equals Loop on every mesh of triangles, non-manifold ones included (an edge
+/// of three or more faces or two the same way, a vertex of several fans, a valence-2 vertex
+/// inside a pillow): every all-triangle mesh under `tests/meshes/` and the generated ones,
+/// levels 1 to 3, every boundary rule Quad/Triangle takes, result for result. (The driver runs
+/// Loop's host and rules, tagged path included, for Quad/Triangle on triangles.)
+#[test]
+fn quad_triangle_is_loop_on_every_triangle_mesh() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes");
+    let mut meshes: Vec<(String, PolyMesh)> =
+        triangle_meshes().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+    for dir in [root.clone(), root.join("cgal"), root.join("osd"), root.join("osd_nonmanifold")] {
+        let mut paths: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+            .collect();
+        paths.sort();
+        for path in paths {
+            let mesh = subsurf::io::read_obj(&std::fs::read_to_string(&path).unwrap()).unwrap();
+            let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
+            // Quad/Triangle refuses a face that repeats a vertex (tests/nonmanifold.rs).
+            if mesh.face_sizes.iter().all(|&n| n == 3) && !he.has_repeated_corners() {
+                let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+                meshes.push((name, mesh));
+            }
+        }
+    }
+    let non_manifold = meshes
+        .iter()
+        .filter(|(_, m)| HalfEdgeMesh::from_poly(m).unwrap().first_non_manifold().is_some())
+        .count();
+    assert!(meshes.len() >= 45 && non_manifold >= 3, "{} meshes", meshes.len());
+    for (name, mesh) in &meshes {
+        for mode in
+            [Boundary::EdgeAndCorner, Boundary::EdgeOnly, Boundary::Fixed, Boundary::Average]
+        {
+            let levels = if mesh.num_faces() > 200 { 2 } else { 3 };
+            for level in 1..=levels {
+                let qt = run(mesh, Scheme::QuadTriangle, level, mode).unwrap();
+                let lp = run(mesh, Scheme::Loop, level, mode).unwrap();
+                assert!(qt == lp, "{name} {mode} level {level}: quad-triangle differs from loop");
+            }
+        }
+    }
+}
+
 /// Quad/Triangle is Catmull-Clark on all-quad meshes and Loop on all-triangle meshes, with
 /// boundaries (compared as sets of positions: the child order of later levels may differ).
 #[test]

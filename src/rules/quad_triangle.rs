@@ -31,7 +31,11 @@
 //!   Catmull-Clark and Loop do. The other [`Boundary`] modes apply as in every primal scheme.
 //!
 //! So on an all-quad mesh the scheme is Catmull-Clark and on an all-triangle mesh it is Loop,
-//! boundaries included, which the tests check against OpenSubdiv.
+//! boundaries included, which the tests check against OpenSubdiv. On a mesh of triangles
+//! [`crate::scheme`] runs Loop itself (its host and rules, with the crease rules for
+//! non-manifold edges and vertices, and child edges kept apart), so that the two agree result
+//! for result there, non-manifold meshes included; these rules serve the triangles of mixed
+//! meshes, and `tests/schemes.rs` checks them against Loop's on meshes of triangles.
 //!
 //! # Evaluation on the parent mesh
 //!
