@@ -13,8 +13,9 @@
 //!
 //! so child cell `h` is the quad `(a, edge point of e, face point, edge point of d)`, child vertex
 //! order is `[old vertices | face points | edge points]`, and the half of parent edge `e` that
-//! touches its first vertex is child edge `2e`, the other `2e + 1`. Every loop writes only the
-//! entries of its own iteration.
+//! touches its first vertex is child edge `2e`, the other `2e + 1` (for an edge from a vertex to
+//! itself, the half at its half-edge's from-end is `2e`, at its to-end `2e + 1`). Every loop
+//! writes only the entries of its own iteration.
 
 use crate::mesh::{quad_and_fan_chunks, HalfEdgeMesh};
 use crate::primvar::Primvar;
@@ -155,7 +156,10 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         mesh.num_half_edges() as u32,
     );
     let edge_base = nv + nf;
-    // Which half of edge `e` touches vertex `a`: child edge 2e or 2e + 1.
+    // Which half of edge `e` touches vertex `a`: child edge 2e or 2e + 1. (An edge from a
+    // vertex to itself, from a face that repeats a vertex, has both ends at `a`: its one
+    // half-edge starts on half 2e and ends on half 2e + 1; the slots below that take the
+    // to-end of a half-edge say so.)
     let half_at = |e: u32, a: u32| 2 * e + (mesh.edge_vertices[e as usize][0] != a) as u32;
     // The child half-edge that parent half-edge `x` leaves on the half of its edge at `a`.
     let child_at = |x: u32, a: u32| {
@@ -165,11 +169,6 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
             4 * mesh.next_in_cell(x) + 3
         }
     };
-    // An edge from a vertex to itself (a face that repeats a vertex) has both ends at one
-    // vertex: its one half-edge starts on half 2e and ends on half 2e + 1. So the half at the
-    // to-end of a half-edge goes by direction (the edge's first vertex is not its from-vertex),
-    // which on any other edge is the half at its to-vertex, and a half with one half-edge is
-    // its own cycle.
 
     let he_from = child_face_indices(mesh);
     // Four entries per parent half-edge, collected in place rather than written into zeroed
@@ -179,20 +178,23 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         .map(|h| {
             let (a, p) = corner(h);
             let (e, d) = (mesh.he_edge[h as usize], mesh.he_edge[p as usize]);
-            let p_end =
-                2 * d + (mesh.edge_vertices[d as usize][0] == mesh.he_from[p as usize]) as u32;
+            // `half_at(d, a)`, but the to-end's half 2d + 1 on an edge from `a` to itself.
+            let [d0, d1] = mesh.edge_vertices[d as usize];
+            let p_end = 2 * d + ((d0 != a) | (d0 == d1)) as u32;
             [half_at(e, a), 2 * ne + h, 2 * ne + p, p_end]
         })
         .collect();
     let he_next_around_edge: Vec<[u32; 4]> = (0..nh)
         .map(|h| {
             let (a, p) = corner(h);
-            let around_p = mesh.he_next_around_edge[p as usize];
+            // `child_at(x, a)`, but `p`'s own to-end child when `p` is alone on its edge.
+            let x = mesh.he_next_around_edge[p as usize];
+            let near_a = mesh.he_from[x as usize] == a && x != p;
             [
                 child_at(mesh.he_next_around_edge[h as usize], a),
                 4 * mesh.next_in_cell(h) + 2,
                 4 * p + 1,
-                if around_p == p { 4 * h + 3 } else { child_at(around_p, a) },
+                if near_a { 4 * x } else { 4 * mesh.next_in_cell(x) + 3 },
             ]
         })
         .collect();

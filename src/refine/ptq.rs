@@ -8,7 +8,8 @@
 //! its own entries.
 //!
 //! Child edges, as in [`super::pqq`]: the half of parent edge `e` at its first vertex is `2e`,
-//! at its second `2e + 1`; triangle `t`'s inner edges are `2E + 3t` (`e0`–`e1`), `2E + 3t + 1`
+//! at its second `2e + 1` (for an edge from a vertex to itself: at its half-edge's from-end and
+//! to-end); triangle `t`'s inner edges are `2E + 3t` (`e0`–`e1`), `2E + 3t + 1`
 //! (`e1`–`e2`) and `2E + 3t + 2` (`e2`–`e0`). [`child_mesh`] numbers them so, by index
 //! arithmetic, and so keeps apart two child edges that join the same two vertices (as
 //! OpenSubdiv does; merging them by vertex pair would change the topology of some
