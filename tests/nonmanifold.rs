@@ -354,3 +354,31 @@ fn degenerate_faces_are_refined() {
         assert_eq!(out.num_faces(), 8 * 4usize.pow(levels - 1));
     }
 }
+
+/// The public hosts of the schemes that refuse faces repeating a vertex (`subdivide` refuses
+/// before they run) must not panic when called on such a mesh directly: whatever they return,
+/// no panic, and a mesh with the expected counts.
+#[test]
+fn hosts_called_directly_on_repeated_vertices_do_not_panic() {
+    use subsurf::refine::{dqq, quad_tri, sqrt3};
+    use subsurf::rules::{DooSabin, QuadTriangle, Sqrt3};
+    for shape in REPEATED_VERTEX_SHAPES {
+        let path = root().join(format!("tests/meshes/osd_nonmanifold/{shape}.obj"));
+        let mesh = read_obj(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let he = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        let qt = quad_tri::refine(&he, &QuadTriangle { boundary: Boundary::EdgeOnly });
+        let centroids = mesh.face_sizes.iter().filter(|&&n| n != 3).count();
+        assert_eq!(qt.num_vertices(), he.num_vertices() + he.num_edges() + centroids, "{shape}");
+        for mode in [dqq::DualBoundary::Retract, dqq::DualBoundary::Chaikin] {
+            let _ = dqq::refine(&he, &DooSabin, mode);
+            let _ = dqq::child_mesh(&he, &DooSabin, mode);
+        }
+        if mesh.face_sizes.iter().all(|&n| n == 3) {
+            for refine_boundary in [false, true] {
+                let rules = Sqrt3 { boundary: Boundary::EdgeAndCorner };
+                let _ = sqrt3::refine(&he, &rules, refine_boundary);
+                let _ = sqrt3::child_mesh(&he, &rules, refine_boundary);
+            }
+        }
+    }
+}
