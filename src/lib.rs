@@ -17,11 +17,12 @@
 //!
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
 //! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
-//! [`attributes`] (data besides positions), [`scheme`] (the driver), [`io`] (OBJ), and the wasm
+//! [`fvar`] (face-varying topology and values), [`attributes`] (data besides positions), [`scheme`] (the driver), [`io`] (OBJ), and the wasm
 //! bindings.
 
 pub mod attributes;
 pub mod error;
+pub mod fvar;
 pub mod io;
 pub mod mesh;
 pub mod options;
