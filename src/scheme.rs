@@ -293,9 +293,9 @@ fn refine_levels<'a>(
             }
             level_tags = None;
         }
-        if !fvar.is_empty() && !scheme.supports_tags() {
+        if !fvar.is_empty() && scheme == Scheme::QuadTriangle {
             return Err(Error::Unsupported(format!(
-                "level {}: {scheme} does not refine face-varying channels (with indices) yet; use catmull-clark, loop, bilinear or midpoint",
+                "level {}: {scheme} does not refine face-varying channels (with indices) yet; use catmull-clark, loop, bilinear, midpoint, doo-sabin or sqrt3",
                 level + 1
             )));
         }
@@ -331,21 +331,34 @@ fn refine_levels<'a>(
                 };
                 if last || mesh.num_cells() == 0 {
                     let (poly, rows) = dqq::refine_with(&mesh, &DooSabin, mode, &rows);
+                    for channel in fvar.iter_mut() {
+                        channel.refine_doo_sabin(&mesh, &DooSabin, mode, &poly.indices);
+                    }
                     (Level::Poly(poly, rows), None)
                 } else {
                     let (child, rows) = dqq::child_mesh_with(&mesh, &DooSabin, mode, &rows)?;
+                    for channel in fvar.iter_mut() {
+                        channel.refine_doo_sabin(&mesh, &DooSabin, mode, &child.he_from);
+                    }
                     (Level::Mesh(child, rows), None)
                 }
             }
             (Scheme::Sqrt3, _) => {
                 let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
                 let rules = Sqrt3 { boundary };
+                let fvar_level = |fvar: &mut Vec<FVarChannel>, corners: &[u32]| {
+                    for channel in fvar.iter_mut() {
+                        channel.refine_sqrt3(&mesh, &rules, refine_boundary, fvar_mode, corners);
+                    }
+                };
                 if last {
                     let (poly, rows) = sqrt3::refine_with(&mesh, &rules, refine_boundary, &rows);
+                    fvar_level(&mut fvar, &poly.indices);
                     (Level::Poly(poly, rows), None)
                 } else {
                     let (child, rows) =
                         sqrt3::child_mesh_with(&mesh, &rules, refine_boundary, &rows)?;
+                    fvar_level(&mut fvar, &child.he_from);
                     (Level::Mesh(child, rows), None)
                 }
             }

@@ -46,7 +46,10 @@
 //! seams, and inner edges are not. `all` and the bilinear and midpoint schemes interpolate every
 //! value linearly (face points are centroids, edge points midpoints, old values stay).
 
+mod doo_sabin;
 mod interpolate;
+mod siblings;
+mod sqrt3;
 mod topology;
 
 pub use interpolate::interpolate;
