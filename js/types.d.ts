@@ -35,9 +35,9 @@ export interface SubdivideMesh {
 }
 
 /**
- * One channel: `itemSize` floats per vertex (1 to 16), in vertex order. (`indices`, one value
- * index per face corner for face-varying data such as UVs split at seams, is checked but refused
- * by this version.)
+ * One channel: `itemSize` floats per vertex (1 to 16), in vertex order; or, with `indices` (one
+ * value index per face corner, parallel to the mesh's `indices`), face-varying data such as UVs
+ * split at seams, refined by every scheme but 'quad-triangle'.
  */
 export interface AttributeChannel {
   array: Float32Array;
