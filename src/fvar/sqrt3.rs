@@ -91,6 +91,7 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
         let linear_boundaries = matches!(self.mode, FVarLinear::Boundaries | FVarLinear::All);
 
         let siblings = Siblings::new(mesh, cv);
+        let seam: Vec<bool> = (0..nh as u32).map(|h| is_seam(mesh, cv, h)).collect();
         let matching: Vec<bool> = (0..nv as u32)
             .map(|v| {
                 let out = mesh.out_half_edges(v);
@@ -99,7 +100,7 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
                 !linear
                     && siblings.count[v as usize] == 1
                     && !(linear_boundaries && boundary)
-                    && out.iter().all(|&h| !is_seam(mesh, cv, h))
+                    && out.iter().all(|&h| !seam[h as usize])
             })
             .collect();
         // The old vertices' child values: one when the vertex matches, else one per value.
@@ -117,8 +118,8 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
         // One value per side of each seam edge.
         let mut mid = vec![NONE; nh];
         let mut at = (new_base + new_count) as u32;
-        for (h, slot) in mid.iter_mut().enumerate() {
-            if is_seam(mesh, cv, h as u32) {
+        for (slot, &seam) in mid.iter_mut().zip(&seam) {
+            if seam {
                 *slot = at;
                 at += 1;
             }
