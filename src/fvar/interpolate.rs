@@ -86,7 +86,7 @@ pub fn interpolate<F: ValueRules, const N: usize>(
             }
             face.iter_mut().for_each(|x| *x *= scale);
             if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
-                let at = child.first[nv + k as usize] as usize * width;
+                let at = (nv + k as usize) * width;
                 out[at..at + width].copy_from_slice(face);
             }
         }
@@ -103,37 +103,34 @@ pub fn interpolate<F: ValueRules, const N: usize>(
     for e in 0..mesh.num_edges() as u32 {
         let [a, b] = mesh.edge_vertices[e as usize];
         let hs = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
-        let first = child.first[edge_base + e as usize];
-        if child.tags[first as usize] & tag::MISMATCH == 0 {
+        let cv = edge_base as u32 + e;
+        if child.tags[cv as usize] & tag::MISMATCH == 0 {
             let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
             if linear {
-                midpoint(&mut out[slot(first)], ends[0].1, ends[1].1);
+                midpoint(&mut out[slot(cv)], ends[0].1, ends[1].1);
             } else {
-                sum.eval_into(&mut out[slot(first)], ends, |w| rules.edge_point(mesh, e, w));
+                sum.eval_into(&mut out[slot(cv)], ends, |w| rules.edge_point(mesh, e, w));
             }
             continue;
         }
-        let count = child.first[edge_base + e as usize + 1] - first;
-        for (j, &x) in hs.iter().take(count as usize).enumerate() {
+        for (j, &x) in hs.iter().take(child.count(cv) as usize).enumerate() {
             let (va, vb) = (parent.value_at(mesh, x, a), parent.value_at(mesh, x, b));
-            midpoint(&mut out[slot(first + j as u32)], va, vb);
+            midpoint(&mut out[slot(child.value(cv, j as u32))], va, vb);
         }
     }
 
     for v in 0..nv as u32 {
-        let pf = parent.first[v as usize];
-        let cf = child.first[v as usize];
-        if parent.tags[pf as usize] & tag::MISMATCH == 0 {
+        if parent.tags[v as usize] & tag::MISMATCH == 0 {
             if linear || mesh.out_half_edges(v).is_empty() {
-                out[slot(cf)].copy_from_slice(row(pf));
+                out[slot(v)].copy_from_slice(row(v));
             } else {
-                sum.eval_into(&mut out[slot(cf)], [(v, pf); 2], |w| rules.vertex_point(mesh, v, w));
+                sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.vertex_point(mesh, v, w));
             }
             continue;
         }
-        let count = parent.first[v as usize + 1] - pf;
+        let count = parent.count(v);
         for j in 0..count {
-            let (p, c) = (pf + j, cf + j);
+            let (p, c) = (parent.value(v, j), child.value(v, j));
             let child_tag = child.tags[c as usize];
             if linear || child_tag & tag::CREASE == 0 {
                 out[slot(c)].copy_from_slice(row(p));
@@ -148,7 +145,11 @@ pub fn interpolate<F: ValueRules, const N: usize>(
             let (mut vertex_weight, mut end_weight) = (0.75f32, 0.125f32);
             if parent_tag & tag::SEMI_SHARP != 0 {
                 // A value sharpened by the other one takes that one's transition.
-                let source = if parent_tag & tag::DEP_SHARP != 0 { pf + (1 - j.min(1)) } else { p };
+                let source = if parent_tag & tag::DEP_SHARP != 0 {
+                    parent.value(v, 1 - j.min(1))
+                } else {
+                    p
+                };
                 let corner = fractional_weight(mesh, parent, sharp, v, source);
                 let crease = 1.0 - corner;
                 vertex_weight = crease * 0.75 + corner;
