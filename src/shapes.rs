@@ -295,33 +295,6 @@ pub fn house() -> PolyMesh {
 // ---------------------------------------------------------------------------------------------
 // What a viewer needs besides the faces: smooth normals and the edges
 
-/// Checks that `mesh`'s arrays fit together (whole vertices, face sizes summing to the index
-/// count, every index naming a vertex) without building the half-edge mesh, so that the
-/// display helpers below cost one pass over the faces.
-fn check_flat_arrays(mesh: &PolyMesh) -> crate::Result<()> {
-    if !mesh.positions.len().is_multiple_of(3) {
-        return Err(crate::Error::InvalidMesh(format!(
-            "positions has {} entries, which is not a multiple of 3 (x, y, z per vertex)",
-            mesh.positions.len()
-        )));
-    }
-    let total: u64 = mesh.face_sizes.iter().map(|&n| n as u64).sum();
-    if total != mesh.indices.len() as u64 {
-        return Err(crate::Error::InvalidMesh(format!(
-            "faceSizes add up to {total} but indices has {} entries; they must be equal",
-            mesh.indices.len()
-        )));
-    }
-    let vertices = mesh.num_vertices();
-    if let Some(k) = mesh.indices.iter().position(|&i| i as usize >= vertices) {
-        return Err(crate::Error::InvalidMesh(format!(
-            "indices[{k}] refers to vertex {}, but there are only {vertices} vertices",
-            mesh.indices[k]
-        )));
-    }
-    Ok(())
-}
-
 /// Calls `f(a, b)` for every directed edge `a → b` of every face, face after face.
 fn for_each_half_edge(mesh: &PolyMesh, mut f: impl FnMut(u32, u32)) {
     let mut start = 0usize;
@@ -340,7 +313,7 @@ fn for_each_half_edge(mesh: &PolyMesh, mut f: impl FnMut(u32, u32)) {
 /// cancel out, gets (0, 0, 0). Faces may be any polygons; a non-planar face counts with the
 /// sum of its fan triangles' area vectors.
 pub fn vertex_normals(mesh: &PolyMesh) -> crate::Result<Vec<f32>> {
-    check_flat_arrays(mesh)?;
+    mesh.check_arrays()?;
     let p = |v: u32| {
         let i = 3 * v as usize;
         [mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]]
@@ -377,7 +350,7 @@ pub fn vertex_normals(mesh: &PolyMesh) -> crate::Result<Vec<f32>> {
 /// two faces appears once (from the face where it runs from the lower index to the higher);
 /// a boundary edge appears once, as its one face runs it. Linear time: no sorting, no hashing.
 pub fn edge_list(mesh: &PolyMesh) -> crate::Result<Vec<u32>> {
-    check_flat_arrays(mesh)?;
+    mesh.check_arrays()?;
     let vertices = mesh.num_vertices();
     // The targets of each vertex's outgoing half-edges, grouped by vertex (CSR), so that
     // "does b → a exist" is a scan of b's few neighbours.
