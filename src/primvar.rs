@@ -100,7 +100,7 @@ impl<'a> RowSum<'a> {
     /// `sum += weight * row`. The common widths (a scalar, UVs, a colour, four skin weights)
     /// get unrolled bodies: a loop over three floats cost more than the sums themselves.
     #[inline(always)]
-    fn add(sum: &mut [f32], row: &[f32], weight: f32) {
+    pub(crate) fn add(sum: &mut [f32], row: &[f32], weight: f32) {
         match sum.len() {
             1 => add_n::<1>(sum, row, weight),
             2 => add_n::<2>(sum, row, weight),
@@ -142,6 +142,97 @@ impl Weights for RowSum<'_> {
         let start = c as usize * self.width;
         let row = &self.face_rows[start..start + self.width];
         Self::add(&mut self.sum, row, weight * self.scale);
+    }
+
+    /// The scale outside the group.
+    type Group = f32;
+
+    #[inline]
+    fn begin_group(&mut self, scale: f32) -> f32 {
+        let outer = self.scale;
+        self.scale = outer * scale;
+        outer
+    }
+
+    #[inline]
+    fn end_group(&mut self, outer: f32) {
+        self.scale = outer;
+    }
+}
+
+/// Sums weighted rows of a face-varying channel (`width` floats per value) for one new value
+/// whose vertex topology matches the surface's: corners resolve through `corner_values` (the
+/// value each parent face corner sees), face points are the child level's `face_values` by
+/// cell, and a rule's `vertex(v)` is the value `ends` gives for `v` (the moving vertex's value,
+/// or an edge's end values as one of its faces sees them).
+pub struct FVarSum<'a> {
+    pub values: &'a [f32],
+    pub width: usize,
+    pub corner_values: &'a [u32],
+    pub face_values: &'a [f32],
+    pub ends: [(u32, u32); 2],
+    pub sum: Vec<f32>,
+    scale: f32,
+}
+
+impl<'a> FVarSum<'a> {
+    pub fn new(
+        values: &'a [f32],
+        width: usize,
+        corner_values: &'a [u32],
+        face_values: &'a [f32],
+    ) -> Self {
+        FVarSum {
+            values,
+            width,
+            corner_values,
+            face_values,
+            ends: [(0, 0); 2],
+            sum: vec![0.0; width],
+            scale: 1.0,
+        }
+    }
+
+    /// Writes into `out` the value whose weights `rule` gives, with `ends` resolving
+    /// [`Weights::vertex`].
+    #[inline]
+    pub fn eval_into(
+        &mut self,
+        out: &mut [f32],
+        ends: [(u32, u32); 2],
+        rule: impl FnOnce(&mut Self),
+    ) {
+        self.ends = ends;
+        self.sum.fill(0.0);
+        rule(self);
+        out.copy_from_slice(&self.sum);
+    }
+
+    #[inline]
+    fn add_value(&mut self, value: u32, weight: f32) {
+        let start = value as usize * self.width;
+        let row = &self.values[start..start + self.width];
+        RowSum::add(&mut self.sum, row, weight * self.scale);
+    }
+}
+
+impl Weights for FVarSum<'_> {
+    #[inline]
+    fn vertex(&mut self, v: u32, weight: f32) {
+        let value = if self.ends[0].0 == v { self.ends[0].1 } else { self.ends[1].1 };
+        self.add_value(value, weight);
+    }
+
+    #[inline]
+    fn corner(&mut self, h: u32, weight: f32) {
+        self.add_value(self.corner_values[h as usize], weight);
+    }
+
+    #[inline]
+    fn face_point(&mut self, c: u32, weight: f32) {
+        let start = c as usize * self.width;
+        let row = &self.face_values[start..start + self.width];
+        RowSum::add(&mut self.sum, row, weight * self.scale);
     }
 
     /// The scale outside the group.

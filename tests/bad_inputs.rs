@@ -380,7 +380,6 @@ cases! {
     channel_indices_wrong_length;
     channel_indices_out_of_range;
     channel_indices_of_the_wrong_type;
-    channel_face_varying_not_refined_yet;
     obj_valid_file_but_loop_on_a_quad;
 }
 

@@ -1085,11 +1085,6 @@ pub fn catalogue() -> Vec<Case> {
             &["attributes.uv.indices must be a Uint32Array", "Int32Array"],
         )
         .rust(NA(JS_ONLY_CHANNEL)),
-        attribute_case(
-            "channel_face_varying_not_refined_yet",
-            channel("uv", 2.0, JsField::Float32(vec![0.0; 8]), Some(JsField::Uint32(vec![0; 24]))),
-            &["attribute 'uv'", "face-varying", "not refined by this version"],
-        ),
         Case::new(
             "obj_valid_file_but_loop_on_a_quad",
             Input::Obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n".into()),

@@ -1,0 +1,146 @@
+//! The values of a refined level (OpenSubdiv's `Far::PrimvarRefiner::InterpolateFaceVarying`):
+//! face points are centroids, a matching value takes the surface's own rule, a seam's edge
+//! point is the midpoint on each side, and a mismatched vertex value stays (a corner) or
+//! follows its crease, blended while semi-sharp features decay.
+
+use super::tag;
+use super::topology::{span_inner_edges, FVarLevel, LevelSharpness};
+use crate::mesh::HalfEdgeMesh;
+use crate::primvar::{FVarSum, RowSum};
+use crate::refine::PrimalSplit;
+use crate::rules::crease::decay;
+
+/// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
+/// on the primal split `S` with `rules`. With `linear` (mode `all`, or a linear scheme), every
+/// value is interpolated linearly. `sharp` is the parent level's sharpness.
+pub fn interpolate<S: PrimalSplit<R>, R>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &FVarLevel,
+    child: &mut FVarLevel,
+    linear: bool,
+    sharp: &LevelSharpness,
+) {
+    let width = parent.width;
+    let (nv, nf) = (mesh.num_vertices(), mesh.num_cells());
+    let mut out = vec![0.0f32; child.num_values() * width];
+    let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
+
+    let mut face_values = Vec::new();
+    if S::FACE_POINTS {
+        face_values = vec![0.0f32; nf * width];
+        for (c, face) in face_values.chunks_exact_mut(width.max(1)).enumerate() {
+            let range = mesh.cell_range(c);
+            let scale = 1.0 / range.len() as f32;
+            for h in range {
+                RowSum::add(face, row(parent.corner_values[h]), 1.0);
+            }
+            face.iter_mut().for_each(|x| *x *= scale);
+            let at = child.first[nv + c] as usize * width;
+            out[at..at + width].copy_from_slice(face);
+        }
+    }
+    let edge_base = nv + if S::FACE_POINTS { nf } else { 0 };
+    let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, &face_values);
+    let midpoint = |out: &mut [f32], a: u32, b: u32| {
+        for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
+            *o = 0.5 * (x + y);
+        }
+    };
+    let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
+
+    for e in 0..mesh.num_edges() as u32 {
+        let [a, b] = mesh.edge_vertices[e as usize];
+        let hs = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
+        let first = child.first[edge_base + e as usize];
+        if child.tags[first as usize] & tag::MISMATCH == 0 {
+            let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
+            if linear {
+                midpoint(&mut out[slot(first)], ends[0].1, ends[1].1);
+            } else {
+                sum.eval_into(&mut out[slot(first)], ends, |w| S::edge_rule(rules, mesh, e, w));
+            }
+            continue;
+        }
+        let count = child.first[edge_base + e as usize + 1] - first;
+        for (j, &x) in hs.iter().take(count as usize).enumerate() {
+            let (va, vb) = (parent.value_at(mesh, x, a), parent.value_at(mesh, x, b));
+            midpoint(&mut out[slot(first + j as u32)], va, vb);
+        }
+    }
+
+    for v in 0..nv as u32 {
+        let pf = parent.first[v as usize];
+        let cf = child.first[v as usize];
+        if parent.tags[pf as usize] & tag::MISMATCH == 0 {
+            if linear || mesh.out_half_edges(v).is_empty() {
+                out[slot(cf)].copy_from_slice(row(pf));
+            } else {
+                sum.eval_into(&mut out[slot(cf)], [(v, pf); 2], |w| {
+                    S::vertex_rule(rules, mesh, v, w)
+                });
+            }
+            continue;
+        }
+        let count = parent.first[v as usize + 1] - pf;
+        for j in 0..count {
+            let (p, c) = (pf + j, cf + j);
+            let child_tag = child.tags[c as usize];
+            if linear || child_tag & tag::CREASE == 0 {
+                out[slot(c)].copy_from_slice(row(p));
+                continue;
+            }
+            // A crease, or a corner turning into one: its ends are across the span's two
+            // bounding edges.
+            let [start, end] = parent.ends[p as usize];
+            let e0 = parent.corner_values[mesh.next_in_cell(start) as usize];
+            let e1 = parent.corner_values[mesh.prev_in_cell(end) as usize];
+            let parent_tag = parent.tags[p as usize];
+            let (mut vertex_weight, mut end_weight) = (0.75f32, 0.125f32);
+            if parent_tag & tag::SEMI_SHARP != 0 {
+                // A value sharpened by the other one takes that one's transition.
+                let source = if parent_tag & tag::DEP_SHARP != 0 { pf + (1 - j.min(1)) } else { p };
+                let corner = fractional_weight(mesh, parent, sharp, v, source);
+                let crease = 1.0 - corner;
+                vertex_weight = crease * 0.75 + corner;
+                end_weight = crease * 0.125;
+            }
+            let target = &mut out[slot(c)];
+            target.fill(0.0);
+            RowSum::add(target, row(e0), end_weight);
+            RowSum::add(target, row(e1), end_weight);
+            RowSum::add(target, row(p), vertex_weight);
+        }
+    }
+    child.values = out;
+}
+
+/// How much of the corner rule a value keeps as its span's sharpness decays to smooth: the mean
+/// sharpness of what turns smooth at this level (the vertex, the edges inside the span), at
+/// most 1 (OpenSubdiv's `Crease::ComputeFractionalWeightAtVertex` over the span).
+fn fractional_weight(
+    mesh: &HalfEdgeMesh,
+    level: &FVarLevel,
+    sharp: &LevelSharpness,
+    v: u32,
+    value: u32,
+) -> f32 {
+    let (mut sum, mut count) = (0.0f32, 0u32);
+    let vertex = sharp.vertex(mesh, v);
+    if vertex > 0.0 && decay(vertex) <= 0.0 {
+        sum += vertex;
+        count += 1;
+    }
+    span_inner_edges(mesh, level.ends[value as usize], |e| {
+        let s = sharp.edge(mesh, e);
+        if s > 0.0 && sharp.child_edge(mesh, e, v) <= 0.0 {
+            sum += s;
+            count += 1;
+        }
+    });
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f32).min(1.0)
+    }
+}

@@ -1,0 +1,622 @@
+//! The value topology of one level: which values each vertex has, which corner sees which,
+//! how each value is tagged, and which edges are seams (OpenSubdiv's `Vtr::FVarLevel`), analysed
+//! for a first level and inherited by refined ones (`Vtr::FVarRefinement`).
+
+use super::{edge_tag, tag, ModeRules};
+use crate::mesh::HalfEdgeMesh;
+use crate::rules::crease::decay;
+use crate::rules::LevelTags;
+use crate::tags::SHARPNESS_INFINITE;
+
+/// The primal split that made a level: it fixes the child vertex order (`[vertices | face
+/// points | edge points]` for quads, `[vertices | edge points]` for triangles) and which parent
+/// value each child corner sees.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Split {
+    Quad,
+    Triangle,
+}
+
+/// The sharpness of one level as the face-varying rules read it: the level's tags when it has
+/// any (boundary and non-manifold edges are infinitely sharp there already), otherwise sharp
+/// boundary edges only; and under `edge-and-corner`, a vertex with one face is infinitely sharp
+/// (OpenSubdiv's factory writes that into the vertex sharpness; our crease rules recognise it).
+#[derive(Clone, Copy, Debug)]
+pub struct LevelSharpness<'a> {
+    pub tags: Option<&'a LevelTags>,
+    pub sharp_corners: bool,
+}
+
+impl Split {
+    fn corners(self) -> u32 {
+        match self {
+            Split::Quad => 4,
+            Split::Triangle => 3,
+        }
+    }
+
+    /// The next corner of child half-edge `h` in its cell (every child cell has the same size).
+    fn child_next(self, h: u32) -> u32 {
+        let n = self.corners();
+        h - h % n + (h % n + 1) % n
+    }
+
+    /// The previous corner of child half-edge `h` in its cell.
+    fn child_prev(self, h: u32) -> u32 {
+        let n = self.corners();
+        h - h % n + (h % n + n - 1) % n
+    }
+}
+
+impl LevelSharpness<'_> {
+    pub(crate) fn edge(&self, mesh: &HalfEdgeMesh, e: u32) -> f32 {
+        match self.tags {
+            Some(t) => t.edges[e as usize],
+            None if mesh.edge_range(e as usize).len() != 2 || mesh.is_non_manifold_edge(e) => {
+                SHARPNESS_INFINITE
+            }
+            None => 0.0,
+        }
+    }
+
+    pub(crate) fn vertex(&self, mesh: &HalfEdgeMesh, v: u32) -> f32 {
+        if self.sharp_corners && mesh.out_half_edges(v).len() == 1 {
+            return SHARPNESS_INFINITE;
+        }
+        self.tags.map_or(0.0, |t| t.vertices[v as usize])
+    }
+
+    /// The sharpness at the next level of edge `e`'s half at `v`.
+    pub(crate) fn child_edge(&self, mesh: &HalfEdgeMesh, e: u32, v: u32) -> f32 {
+        match self.tags {
+            Some(t) => t.decay_at(t.edges[e as usize], v),
+            None => decay(self.edge(mesh, e)),
+        }
+    }
+}
+
+fn is_semi_sharp(s: f32) -> bool {
+    s > 0.0 && s < SHARPNESS_INFINITE
+}
+
+/// One level of a face-varying channel: its values (`width` floats each, numbered vertex by
+/// vertex, so vertex `v`'s values are `first[v]..first[v + 1]`), the value each face corner
+/// (half-edge) sees, each value's tag ([`tag`]) and crease ends, and each edge's tag
+/// ([`edge_tag`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FVarLevel {
+    pub width: usize,
+    pub values: Vec<f32>,
+    pub corner_values: Vec<u32>,
+    pub(crate) first: Vec<u32>,
+    pub(crate) tags: Vec<u8>,
+    /// For a crease or semi-sharp value: the vertex's outgoing half-edges in the first and last
+    /// face of its span, whose next and previous corners hold the crease's end values.
+    pub(crate) ends: Vec<[u32; 2]>,
+    pub(crate) edge_tags: Vec<u8>,
+}
+
+/// What gathering a value's span finds (OpenSubdiv's `FVarLevel::ValueSpan`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Span {
+    size: usize,
+    start: usize,
+    /// Seams inside the span, or more than one run of faces: the value is a corner.
+    discts: i32,
+    semi_sharp: u32,
+    inf_sharp: u32,
+}
+
+enum EdgeClass {
+    Seam,
+    Infinite,
+    SemiSharp,
+    Smooth,
+}
+
+impl FVarLevel {
+    /// Number of values.
+    pub fn num_values(&self) -> usize {
+        self.tags.len()
+    }
+
+    /// The first level's topology from a channel's `indices` (one per face corner) into
+    /// `values` (`width` floats each), under `mode`: its values become one per vertex and
+    /// sibling. OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues`, including the order in
+    /// which it visits vertices where that changes a result (which boundary edges are linear).
+    pub(crate) fn base(
+        mesh: &HalfEdgeMesh,
+        values: &[f32],
+        width: usize,
+        indices: &[u32],
+        sharp: &LevelSharpness,
+        mode: ModeRules,
+    ) -> Self {
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        let value_at = |x: u32, v: u32| {
+            let corner = if mesh.he_from[x as usize] == v { x } else { mesh.next_in_cell(x) };
+            indices[corner as usize]
+        };
+        let mut edge_tags = vec![0u8; ne];
+        let mut mismatch = vec![false; nv];
+        // OpenSubdiv visits the vertices in order and marks both ends of a seam when it meets
+        // the seam at one of them; a boundary vertex is tested for the mode's own sharpening
+        // only if no seam marked it before its turn.
+        let mut early = vec![false; nv];
+        let mut boundary = vec![false; nv];
+        for (e, seam) in edge_tags.iter_mut().enumerate() {
+            let hs = &mesh.edge_half_edges[mesh.edge_range(e)];
+            let [a, b] = mesh.edge_vertices[e];
+            if hs.len() == 1 {
+                boundary[a as usize] = true;
+                boundary[b as usize] = true;
+                continue;
+            }
+            let (va, vb) = (value_at(hs[0], a), value_at(hs[0], b));
+            let (mut at_a, mut at_b) = (false, false);
+            for &x in &hs[1..] {
+                at_a |= value_at(x, a) != va;
+                at_b |= value_at(x, b) != vb;
+            }
+            if !(at_a || at_b) {
+                continue;
+            }
+            *seam = edge_tag::MISMATCH | if mode.linear_boundaries { edge_tag::LINEAR } else { 0 };
+            mismatch[a as usize] = true;
+            mismatch[b as usize] = true;
+            if at_a {
+                early[a as usize] = true;
+                early[b as usize] |= b > a;
+            }
+            if at_b {
+                early[b as usize] = true;
+                early[a as usize] |= a > b;
+            }
+        }
+        let smooth_corners_sharp = !sharp.sharp_corners && mode.corners_sharp;
+        for v in 0..nv as u32 {
+            if !boundary[v as usize] || early[v as usize] {
+                continue;
+            }
+            let out = mesh.out_half_edges(v);
+            if mode.linear_boundaries && !out.is_empty() {
+                mismatch[v as usize] = true;
+                for &h in out {
+                    for x in [h, mesh.prev_in_cell(h)] {
+                        if mesh.he_next_around_edge[x as usize] == x {
+                            edge_tags[mesh.he_edge[x as usize] as usize] |= edge_tag::LINEAR;
+                        }
+                    }
+                }
+            } else if out.len() == 1 && smooth_corners_sharp {
+                mismatch[v as usize] = true;
+            }
+        }
+
+        let mut level = FVarLevel {
+            width,
+            values: Vec::with_capacity(nv * width),
+            corner_values: vec![0; mesh.num_half_edges()],
+            first: Vec::with_capacity(nv + 1),
+            tags: Vec::with_capacity(nv),
+            ends: Vec::with_capacity(nv),
+            edge_tags,
+        };
+        let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
+        let maybe_non_manifold =
+            mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
+        let (mut fan, mut siblings, mut uniques) = (Vec::new(), Vec::new(), Vec::new());
+        for v in 0..nv as u32 {
+            let start = level.tags.len() as u32;
+            level.first.push(start);
+            let out = mesh.out_half_edges(v);
+            let Some(&first_corner) = out.first() else {
+                // A vertex without faces: one value no corner sees.
+                level.push_value(&vec![0.0; width], 0, [0, 0]);
+                continue;
+            };
+            let manifold = !maybe_non_manifold
+                || (!sharp.tags.is_some_and(|t| t.is_non_manifold_vertex(v))
+                    && fan_order(mesh, v, &mut fan).is_some());
+            if !mismatch[v as usize] {
+                let value = indices[first_corner as usize];
+                // Faces around a non-manifold vertex may disagree without any seam.
+                if manifold || out.iter().all(|&h| indices[h as usize] == value) {
+                    level.push_value(row(value), 0, [0, 0]);
+                    for &h in out {
+                        level.corner_values[h as usize] = start;
+                    }
+                    continue;
+                }
+            }
+            let open = if manifold {
+                fan_order(mesh, v, &mut fan).unwrap_or(false)
+            } else {
+                fan.clear();
+                fan.extend_from_slice(out);
+                false
+            };
+            uniques.clear();
+            siblings.clear();
+            for (i, &h) in fan.iter().enumerate() {
+                let x = indices[h as usize];
+                let s = if i > 0 && indices[fan[i - 1] as usize] == x {
+                    siblings[i - 1]
+                } else if i > 0 && (uniques.len() == 1 || (uniques.len() == 2 && uniques[0] != x)) {
+                    // OpenSubdiv compares a third run's value with the first value only, so
+                    // a value met again after another one becomes a sibling of its own (with
+                    // a span of its own); results depend on it.
+                    uniques.push(x);
+                    uniques.len() - 1
+                } else {
+                    uniques.iter().position(|&u| u == x).unwrap_or_else(|| {
+                        uniques.push(x);
+                        uniques.len() - 1
+                    })
+                };
+                siblings.push(s);
+                level.corner_values[h as usize] = start + s as u32;
+            }
+            let spans = if manifold {
+                let class = |e: u32| {
+                    if level.edge_tags[e as usize] & edge_tag::MISMATCH != 0 {
+                        return EdgeClass::Seam;
+                    }
+                    match sharp.edge(mesh, e) {
+                        s if s >= SHARPNESS_INFINITE => EdgeClass::Infinite,
+                        s if s > 0.0 => EdgeClass::SemiSharp,
+                        _ => EdgeClass::Smooth,
+                    }
+                };
+                gather_spans(mesh, &fan, open, &siblings, uniques.len(), class)
+            } else {
+                vec![Span { discts: 1, ..Span::default() }; uniques.len()]
+            };
+            let vertex_sharpness = sharp.vertex(mesh, v);
+            let n = uniques.len();
+            let mut all_corners = mode.linear_boundaries
+                || vertex_sharpness >= SHARPNESS_INFINITE
+                || !manifold
+                || (mode.dependent_sharpness && n > 2)
+                || (mode.sharpen_darts && n == 1 && !boundary[v as usize]);
+            let mut dependent = false;
+            if !all_corners && mode.dependent_sharpness && n == 2 {
+                let [s0, s1] = [spans[0], spans[1]];
+                all_corners =
+                    s0.inf_sharp > 0 || s1.inf_sharp > 0 || s0.discts > 0 || s1.discts > 0;
+                if mode.sharpen_both_if_one_corner {
+                    all_corners |= s0.size == 1 || s1.size == 1;
+                }
+                dependent = (s0.semi_sharp > 0) != (s1.semi_sharp > 0);
+            }
+            for (s, span) in spans.iter().enumerate() {
+                let mut t = tag::MISMATCH;
+                let mut ends = [0, 0];
+                let corner = span.discts > 0
+                    || all_corners
+                    || span.inf_sharp > 0
+                    || (span.size == 1 && mode.corners_sharp);
+                if !corner {
+                    t |= if span.semi_sharp > 0 || is_semi_sharp(vertex_sharpness) {
+                        tag::SEMI_SHARP
+                    } else if dependent {
+                        tag::SEMI_SHARP | tag::DEP_SHARP
+                    } else {
+                        tag::CREASE
+                    };
+                    let last = (span.start + span.size - 1) % fan.len();
+                    ends = [fan[span.start], fan[last]];
+                }
+                level.push_value(row(uniques[s]), t, ends);
+            }
+        }
+        level.first.push(level.tags.len() as u32);
+        level
+    }
+
+    fn push_value(&mut self, row: &[f32], tag: u8, ends: [u32; 2]) {
+        self.values.extend_from_slice(row);
+        self.tags.push(tag);
+        self.ends.push(ends);
+    }
+
+    /// The value of `v`'s end of edge-side half-edge `x` (the corner of `x`'s face at `v`).
+    pub(crate) fn value_at(&self, mesh: &HalfEdgeMesh, x: u32, v: u32) -> u32 {
+        let corner = if mesh.he_from[x as usize] == v { x } else { mesh.next_in_cell(x) };
+        self.corner_values[corner as usize]
+    }
+
+    /// The next level's topology (no values yet) after `split` of `mesh`: OpenSubdiv's
+    /// `FVarRefinement::applyRefinement` for a uniform split.
+    pub(crate) fn child_topology(
+        &self,
+        mesh: &HalfEdgeMesh,
+        split: Split,
+        sharp: &LevelSharpness,
+        mode: ModeRules,
+    ) -> FVarLevel {
+        let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
+        let face_points = if split == Split::Quad { nf } else { 0 };
+        let edge_base = nv + face_points;
+        let nh = mesh.num_half_edges();
+        let child_edges = 2 * ne + if split == Split::Quad { nh } else { nf * 3 };
+        let mut next = FVarLevel {
+            width: self.width,
+            values: Vec::new(),
+            corner_values: Vec::new(),
+            first: Vec::with_capacity(edge_base + ne + 1),
+            tags: Vec::with_capacity(edge_base + ne),
+            ends: Vec::with_capacity(edge_base + ne),
+            edge_tags: vec![0; child_edges],
+        };
+        // Children of old vertices: one value per parent value when the vertex mismatched.
+        for v in 0..nv {
+            next.first.push(next.tags.len() as u32);
+            let values = self.first[v] as usize..self.first[v + 1] as usize;
+            if self.tags[values.start] & tag::MISMATCH == 0 {
+                next.tags.push(0);
+                next.ends.push([0, 0]);
+                continue;
+            }
+            for i in values {
+                next.tags.push(self.tags[i]);
+                // The child face at parent corner `h` leaves the child vertex on `4h`.
+                next.ends.push(self.ends[i].map(|h| 4 * h));
+            }
+        }
+        for _ in 0..face_points {
+            next.first.push(next.tags.len() as u32);
+            next.tags.push(0);
+            next.ends.push([0, 0]);
+        }
+        let split_tag =
+            if mode.smooth_boundaries() { tag::MISMATCH | tag::CREASE } else { tag::MISMATCH };
+        for e in 0..ne {
+            next.first.push(next.tags.len() as u32);
+            let et = self.edge_tags[e];
+            next.edge_tags[2 * e] = et;
+            next.edge_tags[2 * e + 1] = et;
+            let t = if et != 0 { split_tag } else { 0 };
+            if et & edge_tag::MISMATCH == 0 {
+                next.tags.push(t);
+                next.ends.push([0, 0]);
+                continue;
+            }
+            // A seam's edge point: one value per face, its span the children of that face at
+            // the edge point, bounded by the edge's halves.
+            for &x in &mesh.edge_half_edges[mesh.edge_range(e)] {
+                next.tags.push(t);
+                let toward_end = split.child_prev(4 * mesh.next_in_cell(x));
+                next.ends.push([toward_end, split.child_next(4 * x)]);
+            }
+        }
+        next.first.push(next.tags.len() as u32);
+        if mode.smooth_boundaries() && sharp.tags.is_some() {
+            next.reclassify_semi_sharp(mesh, self, sharp, mode);
+        }
+
+        // The value each child corner sees.
+        let old = |h: u32| {
+            let v = mesh.he_from[h as usize];
+            next.first[v as usize] + (self.corner_values[h as usize] - self.first[v as usize])
+        };
+        let side = |x: u32| {
+            let e = mesh.he_edge[x as usize] as usize;
+            let first = next.first[edge_base + e];
+            if self.edge_tags[e] & edge_tag::MISMATCH == 0 {
+                return first;
+            }
+            let hs = &mesh.edge_half_edges[mesh.edge_range(e)];
+            first + hs.iter().position(|&y| y == x).unwrap_or(0) as u32
+        };
+        let mut corners = Vec::with_capacity(4 * nh);
+        match split {
+            Split::Quad => {
+                for h in 0..mesh.num_half_edges() as u32 {
+                    let face = next.first[nv + mesh.cell_of(h) as usize];
+                    corners.extend_from_slice(&[old(h), side(h), face, side(mesh.prev_in_cell(h))]);
+                }
+            }
+            Split::Triangle => {
+                for t in 0..nf as u32 {
+                    let [h0, h1, h2] = [3 * t, 3 * t + 1, 3 * t + 2];
+                    let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
+                    corners.extend_from_slice(&[
+                        old(h0),
+                        e0,
+                        e2,
+                        e0,
+                        old(h1),
+                        e1,
+                        e2,
+                        e1,
+                        old(h2),
+                        e1,
+                        e2,
+                        e0,
+                    ]);
+                }
+            }
+        }
+        next.corner_values = corners;
+        next
+    }
+
+    /// Semi-sharp values whose sharpness has decayed at this child level become creases
+    /// (OpenSubdiv's `FVarRefinement::reclassifySemisharpValues`); `parent` is the level this
+    /// one refines, `sharp` its sharpness.
+    fn reclassify_semi_sharp(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        parent: &FVarLevel,
+        sharp: &LevelSharpness,
+        mode: ModeRules,
+    ) {
+        for v in 0..mesh.num_vertices() as u32 {
+            let values = self.first[v as usize] as usize..self.first[v as usize + 1] as usize;
+            if self.tags[values.start] & tag::MISMATCH == 0 {
+                continue;
+            }
+            let vertex_sharpness = sharp.vertex(mesh, v);
+            let (mut semi_edges, mut child_semi_edges) = (false, false);
+            for &h in mesh.out_half_edges(v) {
+                for x in [h, mesh.prev_in_cell(h)] {
+                    let e = mesh.he_edge[x as usize];
+                    semi_edges |= is_semi_sharp(sharp.edge(mesh, e));
+                    child_semi_edges |= is_semi_sharp(sharp.child_edge(mesh, e, v));
+                }
+            }
+            if !is_semi_sharp(vertex_sharpness) && !semi_edges {
+                continue;
+            }
+            let child_sharpness = decay(vertex_sharpness);
+            if child_sharpness > 0.0 {
+                continue;
+            }
+            let to_crease = |t: &mut u8| {
+                *t = (*t & !(tag::SEMI_SHARP | tag::DEP_SHARP)) | tag::CREASE;
+            };
+            if !child_semi_edges {
+                for t in &mut self.tags[values.clone()] {
+                    if *t & tag::SEMI_SHARP != 0 {
+                        to_crease(t);
+                    }
+                }
+                continue;
+            }
+            for (j, i) in values.clone().enumerate() {
+                let t = self.tags[i];
+                if t & tag::SEMI_SHARP == 0 || t & tag::DEP_SHARP != 0 {
+                    continue;
+                }
+                let pi = parent.first[v as usize] as usize + j;
+                let mut still = false;
+                span_inner_edges(mesh, parent.ends[pi], |e| {
+                    still |= is_semi_sharp(sharp.child_edge(mesh, e, v));
+                });
+                if !still {
+                    to_crease(&mut self.tags[i]);
+                }
+            }
+            if values.len() == 2 && mode.dependent_sharpness {
+                let [t0, t1] = [self.tags[values.start], self.tags[values.start + 1]];
+                if t0 & tag::DEP_SHARP != 0 && t1 & tag::SEMI_SHARP == 0 {
+                    self.tags[values.start] &= !tag::DEP_SHARP;
+                } else if t1 & tag::DEP_SHARP != 0 && t0 & tag::SEMI_SHARP == 0 {
+                    self.tags[values.start + 1] &= !tag::DEP_SHARP;
+                }
+            }
+        }
+    }
+}
+
+/// Calls `visit(edge)` for each edge inside a span whose first and last faces leave its vertex
+/// on `[start, end]`, walking across each face's incoming edge to the next face.
+pub(crate) fn span_inner_edges(
+    mesh: &HalfEdgeMesh,
+    [start, end]: [u32; 2],
+    mut visit: impl FnMut(u32),
+) {
+    let mut h = start;
+    // A span never holds more faces than the vertex: the bound only guards a broken fan.
+    for _ in 0..mesh.num_half_edges() {
+        if h == end {
+            return;
+        }
+        let incoming = mesh.prev_in_cell(h);
+        visit(mesh.he_edge[incoming as usize]);
+        let across = mesh.he_next_around_edge[incoming as usize];
+        if across == incoming {
+            return;
+        }
+        h = across;
+    }
+}
+
+/// The outgoing half-edges of `v` in the order of its one fan (an open fan from its boundary
+/// edge), into `fan`; `Some(open)`, or `None` when its faces do not form one fan.
+fn fan_order(mesh: &HalfEdgeMesh, v: u32, fan: &mut Vec<u32>) -> Option<bool> {
+    fan.clear();
+    let out = mesh.out_half_edges(v);
+    let start = *out.first()?;
+    let open = mesh.he_next_around_edge[start as usize] == start;
+    let mut h = start;
+    while fan.len() < out.len() {
+        fan.push(h);
+        let incoming = mesh.prev_in_cell(h);
+        let across = mesh.he_next_around_edge[incoming as usize];
+        if across == incoming {
+            return (open && fan.len() == out.len()).then_some(true);
+        }
+        if across == start {
+            return (!open && fan.len() == out.len()).then_some(false);
+        }
+        if mesh.he_from[across as usize] != v {
+            return None;
+        }
+        h = across;
+    }
+    None
+}
+
+/// The spans of the values around a manifold vertex whose faces (outgoing half-edges `fan`,
+/// face `i` sharing the edge of `fan[i]` with face `i - 1`) see values `siblings`
+/// (OpenSubdiv's `FVarLevel::gatherValueSpans`).
+fn gather_spans(
+    mesh: &HalfEdgeMesh,
+    fan: &[u32],
+    open: bool,
+    siblings: &[usize],
+    count: usize,
+    class: impl Fn(u32) -> EdgeClass,
+) -> Vec<Span> {
+    let n = fan.len();
+    let edge = |i: usize| mesh.he_edge[fan[i] as usize];
+    let add = |span: &mut Span, e: u32| match class(e) {
+        EdgeClass::Seam => span.discts += 1,
+        EdgeClass::Infinite => span.inf_sharp += 1,
+        EdgeClass::SemiSharp => span.semi_sharp += 1,
+        EdgeClass::Smooth => {}
+    };
+    if count == 1 && !open {
+        // An interior vertex with one value: its span starts at its seam, and a second seam
+        // makes it a corner.
+        let mut span = Span { size: n, ..Span::default() };
+        let mut seam = false;
+        for i in 0..n {
+            if let EdgeClass::Seam = class(edge(i)) {
+                if seam {
+                    span.discts = 1;
+                    break;
+                }
+                seam = true;
+                span.start = i;
+            } else {
+                add(&mut span, edge(i));
+            }
+        }
+        return vec![span];
+    }
+    let mut spans = vec![Span::default(); count];
+    spans[0].size = 1;
+    let wraps = !open && siblings[n - 1] == 0;
+    if wraps {
+        add(&mut spans[0], edge(0));
+    }
+    for i in 1..n {
+        let s = siblings[i];
+        if s == siblings[i - 1] {
+            add(&mut spans[s], edge(i));
+        } else {
+            if spans[s].size > 0 {
+                spans[s].discts += 1;
+            }
+            spans[s].start = i;
+        }
+        spans[s].size += 1;
+    }
+    if wraps {
+        spans[0].discts -= 1;
+    }
+    spans
+}
