@@ -172,7 +172,6 @@ fn square_uv(mesh: &subsurf::PolyMesh, face: &[u32], p: [f32; 3]) -> [f32; 2] {
 }
 
 #[test]
-#[ignore = "needs the face-varying refinement (main)"]
 fn refined_uvs_follow_the_closed_form() {
     // Bilinear level 1 of the square-mapped cube: every child quad is a quarter of its parent's
     // square, so each corner's vt is the bilinear parameter of its position on the parent face
@@ -217,8 +216,7 @@ fn refined_uvs_follow_the_closed_form() {
     assert!(uv.values.iter().all(|&x| x == 0.0 || x == 0.5 || x == 1.0), "{:?}", uv.values);
 
     // Catmull-Clark with --fvar-linear all takes the same values as bilinear, corner by corner
-    // (the same child faces in the same order); the default mode smooths the inside of each
-    // square, so at level 2 some value is off the quarter grid that linear interpolation gives.
+    // (the same child faces in the same order), at level 2 the quarter grid.
     let value = |mesh: &subsurf::io::ObjMesh, c: usize| {
         let uv = &mesh.attributes[0];
         let t = uv.indices.as_ref().unwrap()[c] as usize;
@@ -233,9 +231,25 @@ fn refined_uvs_follow_the_closed_form() {
     }
     let on_grid = |x: f32| (x * 4.0 - (x * 4.0).round()).abs() < 1e-6;
     assert!(linear.attributes[0].values.iter().all(|&x| on_grid(x)));
-    let smooth = run_on("uv-default", &cube_with_square_uvs(), &["--levels", "2"]);
-    assert!(
-        !smooth.attributes[0].values.iter().all(|&x| on_grid(x)),
-        "the default mode smooths the inside"
-    );
+
+    // The modes differ at each square's corners, where a value has one face: the default
+    // (corners-plus1) keeps them sharp, so Catmull-Clark level 1 has the bilinear values
+    // {0, 0.5, 1}; 'none' moves them by the boundary rule 3/4 c + 1/8 (a + b) along the seams,
+    // (0, 0) to (1/8, 1/8), (1, 0) to (7/8, 1/8); edge points on seams are midpoints either way.
+    let components = |mesh: &subsurf::io::ObjMesh| {
+        let mut set: Vec<u32> =
+            mesh.attributes[0].values.iter().map(|&x| (x * 8.0).round() as u32).collect();
+        assert!(mesh.attributes[0]
+            .values
+            .iter()
+            .all(|&x| (x * 8.0 - (x * 8.0).round()).abs() < 1e-6));
+        set.sort_unstable();
+        set.dedup();
+        set
+    };
+    let sharp = run_on("uv-plus1", &cube_with_square_uvs(), &["--levels", "1"]);
+    assert_eq!(components(&sharp), [0, 4, 8], "eighths");
+    let smooth =
+        run_on("uv-none", &cube_with_square_uvs(), &["--levels", "1", "--fvar-linear", "none"]);
+    assert_eq!(components(&smooth), [0, 1, 4, 7, 8], "eighths");
 }

@@ -287,3 +287,100 @@ fn to_drawable_refuses_bad_input_and_leaves_the_input_alone() {
     assert_eq!(before, after);
     assert!(!Object::is(&field(&drawable, "positions"), &field(&mesh, "positions")));
 }
+
+/// The components of a channel's values in eighths, sorted and deduplicated; fails unless every
+/// component is a whole number of eighths.
+fn eighths(values: &[f32]) -> Vec<u32> {
+    assert!(values.iter().all(|&x| (x * 8.0 - (x * 8.0).round()).abs() < 1e-6), "{values:?}");
+    let mut set: Vec<u32> = values.iter().map(|&x| (x * 8.0).round() as u32).collect();
+    set.sort_unstable();
+    set.dedup();
+    set
+}
+
+#[wasm_bindgen_test]
+fn face_varying_channels_are_refined_through_subdivide_and_base_mesh() {
+    // The square-mapped cube. Bilinear level 1 quarters each square: values {0, 0.5, 1}², and
+    // each corner's value is the bilinear parameter of its position on its cube face, which for
+    // these axis-aligned unit squares is a closed form of the position (checked through the
+    // drawable mesh, one value per vertex).
+    let mesh = square_mapped_cube();
+    let out = ok(subdivide(&mesh, &object(&[("scheme", "bilinear".into())])));
+    let (values, item_size, indices) = channel_of(&out, "uv");
+    let indices = indices.expect("the result's channel is face-varying");
+    assert_eq!((item_size, indices.len()), (2.0, u32s(&out, "indices").len()));
+    assert_eq!(eighths(&values), [0, 4, 8]);
+    let drawable = ok(to_drawable(&out));
+    assert_drawable_matches(&out, &drawable, "uv", "bilinear level 1");
+    // Each face of the drawable mesh spans exactly a quarter of its square: its corners' values
+    // differ by 0.5 in u or v along every edge, in the order (0,0), (1/2,0), (1/2,1/2), (0,1/2)
+    // rotated and shifted.
+    let uv = channel_of(&drawable, "uv").0;
+    for (f, face) in u32s(&drawable, "indices").chunks(4).enumerate() {
+        let at = |k: usize| [uv[2 * face[k] as usize], uv[2 * face[k] as usize + 1]];
+        let area: f32 =
+            (0..4).map(|k| at(k)[0] * at((k + 1) % 4)[1] - at((k + 1) % 4)[0] * at(k)[1]).sum();
+        assert!(
+            (area / 2.0 - 0.25).abs() < 1e-6,
+            "face {f}: UV area {} (counter-clockwise quarter)",
+            area / 2.0
+        );
+    }
+
+    // The option reaches the rules: Catmull-Clark level 1 keeps the squares' corners under the
+    // default 'corners-plus1' and moves them by 3/4 c + 1/8 (a + b) under 'none': 1/8 and 7/8.
+    let default = channel_of(&ok(subdivide(&mesh, &levels(1.0))), "uv").0;
+    assert_eq!(eighths(&default), [0, 4, 8]);
+    let none = object(&[("fvarLinear", "none".into())]);
+    assert_eq!(eighths(&channel_of(&ok(subdivide(&mesh, &none)), "uv").0), [0, 1, 4, 7, 8]);
+
+    // BaseMesh: the same result; setAttribute scales the values, and the rules, being linear in
+    // them, scale the result; a new array too short for the indices is refused.
+    let mut base = subsurf::wasm::BaseMesh::new(&mesh).unwrap_or_else(|e| panic!("{}", message(e)));
+    let once = ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED));
+    assert_eq!(channel_of(&once, "uv"), channel_of(&ok(subdivide(&mesh, &levels(2.0))), "uv"));
+    let square = [0., 0., 1., 0., 1., 1., 0., 1.].repeat(6);
+    let doubled: Vec<f32> = square.iter().map(|x| 2.0 * x).collect();
+    base.set_attribute("uv", &Float32Array::from(&doubled[..]).into()).unwrap();
+    let twice = ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED));
+    let (once_values, _, once_indices) = channel_of(&once, "uv");
+    let (twice_values, _, twice_indices) = channel_of(&twice, "uv");
+    assert_eq!(once_indices, twice_indices);
+    for (a, b) in once_values.iter().zip(&twice_values) {
+        assert!((2.0 * a - b).abs() < 1e-6, "{a} doubled is not {b}");
+    }
+    let short = base.set_attribute("uv", &Float32Array::from(&doubled[..46]).into());
+    assert_mentions(&thrown(short), &["attribute 'uv'", "index 23 is 23", "23 values"]);
+    let kept = ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED));
+    assert_eq!(
+        channel_of(&kept, "uv"),
+        channel_of(&twice, "uv"),
+        "the refused call kept the values"
+    );
+
+    // Schemes without face-varying rules refuse the channel; the instance works on.
+    let refused = object(&[("scheme", "doo-sabin".into())]);
+    assert_mentions(&thrown(subdivide(&mesh, &refused)), &["doo-sabin", "face-varying"]);
+    module_works_on("a refused face-varying channel");
+}
+
+#[wasm_bindgen_test]
+fn obj_uvs_survive_subdivide_write_and_read() {
+    // A textured OBJ through the whole JS path: readObj, subdivide, writeObj, readObj again.
+    let text =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+    let mesh = ok(read_obj(&text.into()));
+    let out = ok(subdivide(&mesh, &object(&[("levels", 2.into()), ("scheme", "bilinear".into())])));
+    let written = write_obj(&out).unwrap_or_else(|e| panic!("{}", message(e)));
+    let again = ok(read_obj(&written.into()));
+    assert_eq!(channel_of(&again, "uv"), channel_of(&out, "uv"));
+    // One quad, two bilinear levels: the 5 × 5 grid of quarter steps, and a planar quad's UV
+    // is its position (x, y).
+    let (values, _, indices) = channel_of(&out, "uv");
+    assert_eq!(values.len(), 2 * 25);
+    let positions = f32s(&out, "positions");
+    for (&v, &t) in u32s(&out, "indices").iter().zip(&indices.unwrap()) {
+        let (v, t) = (v as usize, t as usize);
+        assert_eq!([values[2 * t], values[2 * t + 1]], [positions[3 * v], positions[3 * v + 1]]);
+    }
+}
