@@ -129,11 +129,7 @@ fn check_attributes(
             let x = &refined[0];
             assert_eq!(x.len(), out.num_vertices(), "{what}: one x per vertex");
             for (p, got) in out.positions.chunks_exact(3).zip(&x.values) {
-                assert!(
-                    (p[0] - got).abs() <= 1e-4 * (1.0 + p[0].abs()),
-                    "{what}: x {got} vs {}",
-                    p[0]
-                );
+                assert!((p[0] - got).abs() <= 1e-4 * (1.0 + p[0].abs()), "{what}: x {got} vs {}", p[0]);
             }
         }
         (Err(e), Err(expected)) if !fuzzed => assert_eq!(&e, expected, "{what}"),
