@@ -207,14 +207,17 @@ pub struct FVarLayout {
     pub groups: Vec<Vec<(usize, String, usize, usize)>>,
 }
 
-/// The face-varying channels of `attributes`, those with equal indices side by side (their
-/// rows up to the shortest channel's count, which every index is below).
+/// The face-varying channels of `attributes`, those with equal indices side by side up to
+/// [`MAX_ITEM_SIZE`] floats (their rows up to the shortest channel's count, which every index
+/// is below).
 pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLayout) {
     let mut layout = FVarLayout::default();
     let mut group_indices: Vec<&[u32]> = Vec::new();
     for (i, a) in attributes.iter().enumerate() {
         let Some(indices) = &a.indices else { continue };
-        match group_indices.iter().position(|&g| g == &indices[..]) {
+        let width = |g: usize| layout.groups[g].iter().map(|m| m.2).sum::<usize>();
+        let fits = |g: usize| width(g) + a.item_size <= MAX_ITEM_SIZE;
+        match (0..group_indices.len()).find(|&g| group_indices[g] == &indices[..] && fits(g)) {
             Some(g) => {
                 let column = layout.groups[g].iter().map(|m| m.2).sum();
                 layout.groups[g].push((i, a.name.clone(), a.item_size, column));
@@ -260,9 +263,15 @@ pub fn unpack_all(
         slots[*i] = Some(a);
     }
     for (channel, members) in channels.into_iter().zip(&fvar_layout.groups) {
-        let level = channel.level;
+        let mut level = channel.level;
         let width = level.width;
-        for (i, name, size, column) in members {
+        if let [(i, name, size, _)] = &members[..] {
+            // A lone channel takes the level's arrays as they are.
+            let (values, indices) = (level.values, level.corner_values);
+            slots[*i] = Some(Attribute::face_varying(name.clone(), *size, values, indices));
+            continue;
+        }
+        for (k, (i, name, size, column)) in members.iter().enumerate() {
             let values = if *size == width {
                 level.values.clone()
             } else {
@@ -272,7 +281,11 @@ pub fn unpack_all(
                 }
                 values
             };
-            let indices = level.corner_values.clone();
+            let indices = if k + 1 == members.len() {
+                std::mem::take(&mut level.corner_values)
+            } else {
+                level.corner_values.clone()
+            };
             slots[*i] = Some(Attribute::face_varying(name.clone(), *size, values, indices));
         }
     }

@@ -160,42 +160,49 @@ impl Weights for RowSum<'_> {
     }
 }
 
-/// Sums weighted rows of a face-varying channel (`width` floats per value) for one new value
-/// whose vertex topology matches the surface's: corners resolve through `corner_values` (the
-/// value each parent face corner sees), face points are the child level's `face_values` by
-/// cell, and a rule's `vertex(v)` is the value `ends` gives for `v` (the moving vertex's value,
-/// or an edge's end values as one of its faces sees them).
-pub struct FVarSum<'a> {
-    pub values: &'a [f32],
-    pub width: usize,
-    pub corner_values: &'a [u32],
-    pub face_values: &'a [f32],
-    pub ends: [(u32, u32); 2],
-    pub sum: Vec<f32>,
+/// The widest row a [`FVarSum`] sums (face-varying channels are grouped up to it).
+pub const FVAR_MAX_WIDTH: usize = crate::attributes::MAX_ITEM_SIZE;
+
+/// Sums weighted rows of a face-varying channel (`width` floats per value, `N` when `N` is not
+/// 0: UVs get a sum the compiler unrolls) for one new value whose vertex topology matches the
+/// surface's: corners resolve through `corner_values` (the value each parent face corner
+/// sees), face points are the child level's `face_values` by cell, and a rule's `vertex(v)` is
+/// the value `ends` gives for `v` (the moving vertex's value, or an edge's end values as one of
+/// its faces sees them).
+pub struct FVarSum<'a, const N: usize> {
+    values: &'a [f32],
+    width: usize,
+    corner_values: &'a [u32],
+    face_values: &'a [f32],
+    ends: [(u32, u32); 2],
+    sum: [f32; FVAR_MAX_WIDTH],
     scale: f32,
 }
 
-impl<'a> FVarSum<'a> {
+impl<'a, const N: usize> FVarSum<'a, N> {
     pub fn new(
         values: &'a [f32],
         width: usize,
         corner_values: &'a [u32],
         face_values: &'a [f32],
     ) -> Self {
-        FVarSum {
-            values,
-            width,
-            corner_values,
-            face_values,
-            ends: [(0, 0); 2],
-            sum: vec![0.0; width],
-            scale: 1.0,
+        let width = if N > 0 { N } else { width.min(FVAR_MAX_WIDTH) };
+        let sum = [0.0; FVAR_MAX_WIDTH];
+        FVarSum { values, width, corner_values, face_values, ends: [(0, 0); 2], sum, scale: 1.0 }
+    }
+
+    #[inline(always)]
+    fn width(&self) -> usize {
+        if N > 0 {
+            N
+        } else {
+            self.width
         }
     }
 
     /// Writes into `out` the value whose weights `rule` gives, with `ends` resolving
     /// [`Weights::vertex`].
-    #[inline]
+    #[inline(always)]
     pub fn eval_into(
         &mut self,
         out: &mut [f32],
@@ -203,49 +210,51 @@ impl<'a> FVarSum<'a> {
         rule: impl FnOnce(&mut Self),
     ) {
         self.ends = ends;
-        self.sum.fill(0.0);
+        let width = self.width();
+        self.sum[..width].fill(0.0);
         rule(self);
-        out.copy_from_slice(&self.sum);
+        out[..width].copy_from_slice(&self.sum[..width]);
     }
 
-    #[inline]
-    fn add_value(&mut self, value: u32, weight: f32) {
-        let start = value as usize * self.width;
-        let row = &self.values[start..start + self.width];
-        RowSum::add(&mut self.sum, row, weight * self.scale);
+    #[inline(always)]
+    fn add_row(&mut self, source: &[f32], index: usize, weight: f32) {
+        let width = self.width();
+        let row = &source[index * width..(index + 1) * width];
+        let weight = weight * self.scale;
+        for (s, &x) in self.sum[..width].iter_mut().zip(row) {
+            *s += x * weight;
+        }
     }
 }
 
-impl Weights for FVarSum<'_> {
-    #[inline]
+impl<const N: usize> Weights for FVarSum<'_, N> {
+    #[inline(always)]
     fn vertex(&mut self, v: u32, weight: f32) {
         let value = if self.ends[0].0 == v { self.ends[0].1 } else { self.ends[1].1 };
-        self.add_value(value, weight);
+        self.add_row(self.values, value as usize, weight);
     }
 
-    #[inline]
+    #[inline(always)]
     fn corner(&mut self, h: u32, weight: f32) {
-        self.add_value(self.corner_values[h as usize], weight);
+        self.add_row(self.values, self.corner_values[h as usize] as usize, weight);
     }
 
-    #[inline]
+    #[inline(always)]
     fn face_point(&mut self, c: u32, weight: f32) {
-        let start = c as usize * self.width;
-        let row = &self.face_values[start..start + self.width];
-        RowSum::add(&mut self.sum, row, weight * self.scale);
+        self.add_row(self.face_values, c as usize, weight);
     }
 
     /// The scale outside the group.
     type Group = f32;
 
-    #[inline]
+    #[inline(always)]
     fn begin_group(&mut self, scale: f32) -> f32 {
         let outer = self.scale;
         self.scale = outer * scale;
         outer
     }
 
-    #[inline]
+    #[inline(always)]
     fn end_group(&mut self, outer: f32) {
         self.scale = outer;
     }

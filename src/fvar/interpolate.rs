@@ -11,9 +11,10 @@ use crate::refine::PrimalSplit;
 use crate::rules::crease::decay;
 
 /// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
-/// on the primal split `S` with `rules`. With `linear` (mode `all`, or a linear scheme), every
+/// on the primal split `S` with `rules`; `N` is the width when it is not 0 (a sum unrolled for
+/// it). With `linear` (mode `all`, or a linear scheme), every
 /// value is interpolated linearly. `sharp` is the parent level's sharpness.
-pub fn interpolate<S: PrimalSplit<R>, R>(
+pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     parent: &FVarLevel,
@@ -41,7 +42,7 @@ pub fn interpolate<S: PrimalSplit<R>, R>(
         }
     }
     let edge_base = nv + if S::FACE_POINTS { nf } else { 0 };
-    let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, &face_values);
+    let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, &face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
             *o = 0.5 * (x + y);
@@ -92,7 +93,7 @@ pub fn interpolate<S: PrimalSplit<R>, R>(
             }
             // A crease, or a corner turning into one: its ends are across the span's two
             // bounding edges.
-            let [start, end] = parent.ends[p as usize];
+            let [start, end] = parent.crease_ends(p);
             let e0 = parent.corner_values[mesh.next_in_cell(start) as usize];
             let e1 = parent.corner_values[mesh.prev_in_cell(end) as usize];
             let parent_tag = parent.tags[p as usize];
@@ -131,7 +132,7 @@ fn fractional_weight(
         sum += vertex;
         count += 1;
     }
-    span_inner_edges(mesh, level.ends[value as usize], |e| {
+    span_inner_edges(mesh, level.crease_ends(value), |e| {
         let s = sharp.edge(mesh, e);
         if s > 0.0 && sharp.child_edge(mesh, e, v) <= 0.0 {
             sum += s;

@@ -160,7 +160,12 @@ impl FVarChannel {
             self.analysed = true;
         }
         let mut child = self.level.child_topology(mesh, split, sharp, mode);
-        interpolate::<S, R>(mesh, rules, &self.level, &mut child, linear || mode.linear, sharp);
+        let (parent, linear) = (&self.level, linear || mode.linear);
+        // UVs get a sum unrolled for two floats; other widths share one loop.
+        match parent.width {
+            2 => interpolate::<S, R, 2>(mesh, rules, parent, &mut child, linear, sharp),
+            _ => interpolate::<S, R, 0>(mesh, rules, parent, &mut child, linear, sharp),
+        }
         self.level = child;
     }
 

@@ -90,9 +90,10 @@ pub struct FVarLevel {
     pub corner_values: Vec<u32>,
     pub(crate) first: Vec<u32>,
     pub(crate) tags: Vec<u8>,
-    /// For a crease or semi-sharp value: the vertex's outgoing half-edges in the first and last
-    /// face of its span, whose next and previous corners hold the crease's end values.
-    pub(crate) ends: Vec<[u32; 2]>,
+    /// For each crease or semi-sharp value, in value order: the value, and the vertex's
+    /// outgoing half-edges in the first and last face of its span, whose next and previous
+    /// corners hold the crease's end values. Sparse: such values lie along seams only.
+    pub(crate) ends: Vec<(u32, [u32; 2])>,
     pub(crate) edge_tags: Vec<u8>,
 }
 
@@ -199,7 +200,7 @@ impl FVarLevel {
             corner_values: vec![0; mesh.num_half_edges()],
             first: Vec::with_capacity(nv + 1),
             tags: Vec::with_capacity(nv),
-            ends: Vec::with_capacity(nv),
+            ends: Vec::new(),
             edge_tags,
         };
         let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
@@ -212,7 +213,7 @@ impl FVarLevel {
             let out = mesh.out_half_edges(v);
             let Some(&first_corner) = out.first() else {
                 // A vertex without faces: one value no corner sees.
-                level.push_value(&vec![0.0; width], 0, [0, 0]);
+                level.push_value(&vec![0.0; width], 0, None);
                 continue;
             };
             let manifold = !maybe_non_manifold
@@ -222,7 +223,7 @@ impl FVarLevel {
                 let value = indices[first_corner as usize];
                 // Faces around a non-manifold vertex may disagree without any seam.
                 if manifold || out.iter().all(|&h| indices[h as usize] == value) {
-                    level.push_value(row(value), 0, [0, 0]);
+                    level.push_value(row(value), 0, None);
                     for &h in out {
                         level.corner_values[h as usize] = start;
                     }
@@ -291,7 +292,7 @@ impl FVarLevel {
             }
             for (s, span) in spans.iter().enumerate() {
                 let mut t = tag::MISMATCH;
-                let mut ends = [0, 0];
+                let mut ends = None;
                 let corner = span.discts > 0
                     || all_corners
                     || span.inf_sharp > 0
@@ -305,7 +306,7 @@ impl FVarLevel {
                         tag::CREASE
                     };
                     let last = (span.start + span.size - 1) % fan.len();
-                    ends = [fan[span.start], fan[last]];
+                    ends = Some([fan[span.start], fan[last]]);
                 }
                 level.push_value(row(uniques[s]), t, ends);
             }
@@ -314,10 +315,27 @@ impl FVarLevel {
         level
     }
 
-    fn push_value(&mut self, row: &[f32], tag: u8, ends: [u32; 2]) {
+    fn push_value(&mut self, row: &[f32], tag: u8, ends: Option<[u32; 2]>) {
+        if let Some(ends) = ends {
+            self.ends.push((self.tags.len() as u32, ends));
+        }
         self.values.extend_from_slice(row);
         self.tags.push(tag);
-        self.ends.push(ends);
+    }
+
+    /// The tag of edge `e`; edges past the stored ones (a refined level's inner edges) have
+    /// none.
+    #[inline]
+    pub(crate) fn edge_tag(&self, e: u32) -> u8 {
+        self.edge_tags.get(e as usize).copied().unwrap_or(0)
+    }
+
+    /// The crease ends of `value` (see [`FVarLevel::ends`]).
+    pub(crate) fn crease_ends(&self, value: u32) -> [u32; 2] {
+        match self.ends.binary_search_by_key(&value, |&(v, _)| v) {
+            Ok(i) => self.ends[i].1,
+            Err(_) => [0, 0],
+        }
     }
 
     /// The value of `v`'s end of edge-side half-edge `x` (the corner of `x`'s face at `v`).
@@ -339,15 +357,15 @@ impl FVarLevel {
         let face_points = if split == Split::Quad { nf } else { 0 };
         let edge_base = nv + face_points;
         let nh = mesh.num_half_edges();
-        let child_edges = 2 * ne + if split == Split::Quad { nh } else { nf * 3 };
         let mut next = FVarLevel {
             width: self.width,
             values: Vec::new(),
             corner_values: Vec::new(),
             first: Vec::with_capacity(edge_base + ne + 1),
             tags: Vec::with_capacity(edge_base + ne),
-            ends: Vec::with_capacity(edge_base + ne),
-            edge_tags: vec![0; child_edges],
+            ends: Vec::new(),
+            // The inner edges that follow are never seams (see `edge_tag`).
+            edge_tags: vec![0; 2 * ne],
         };
         // Children of old vertices: one value per parent value when the vertex mismatched.
         for v in 0..nv {
@@ -355,39 +373,41 @@ impl FVarLevel {
             let values = self.first[v] as usize..self.first[v + 1] as usize;
             if self.tags[values.start] & tag::MISMATCH == 0 {
                 next.tags.push(0);
-                next.ends.push([0, 0]);
                 continue;
             }
             for i in values {
+                if self.tags[i] & (tag::CREASE | tag::SEMI_SHARP) != 0 {
+                    // The child face at parent corner `h` leaves the child vertex on `4h`.
+                    let ends = self.crease_ends(i as u32).map(|h| 4 * h);
+                    next.ends.push((next.tags.len() as u32, ends));
+                }
                 next.tags.push(self.tags[i]);
-                // The child face at parent corner `h` leaves the child vertex on `4h`.
-                next.ends.push(self.ends[i].map(|h| 4 * h));
             }
         }
         for _ in 0..face_points {
             next.first.push(next.tags.len() as u32);
             next.tags.push(0);
-            next.ends.push([0, 0]);
         }
         let split_tag =
             if mode.smooth_boundaries() { tag::MISMATCH | tag::CREASE } else { tag::MISMATCH };
         for e in 0..ne {
             next.first.push(next.tags.len() as u32);
-            let et = self.edge_tags[e];
+            let et = self.edge_tag(e as u32);
             next.edge_tags[2 * e] = et;
             next.edge_tags[2 * e + 1] = et;
             let t = if et != 0 { split_tag } else { 0 };
             if et & edge_tag::MISMATCH == 0 {
                 next.tags.push(t);
-                next.ends.push([0, 0]);
                 continue;
             }
             // A seam's edge point: one value per face, its span the children of that face at
             // the edge point, bounded by the edge's halves.
             for &x in &mesh.edge_half_edges[mesh.edge_range(e)] {
+                if t & tag::CREASE != 0 {
+                    let toward_end = split.child_prev(4 * mesh.next_in_cell(x));
+                    next.ends.push((next.tags.len() as u32, [toward_end, split.child_next(4 * x)]));
+                }
                 next.tags.push(t);
-                let toward_end = split.child_prev(4 * mesh.next_in_cell(x));
-                next.ends.push([toward_end, split.child_next(4 * x)]);
             }
         }
         next.first.push(next.tags.len() as u32);
@@ -403,7 +423,7 @@ impl FVarLevel {
         let side = |x: u32| {
             let e = mesh.he_edge[x as usize] as usize;
             let first = next.first[edge_base + e];
-            if self.edge_tags[e] & edge_tag::MISMATCH == 0 {
+            if self.edge_tag(e as u32) & edge_tag::MISMATCH == 0 {
                 return first;
             }
             let hs = &mesh.edge_half_edges[mesh.edge_range(e)];
@@ -491,7 +511,7 @@ impl FVarLevel {
                 }
                 let pi = parent.first[v as usize] as usize + j;
                 let mut still = false;
-                span_inner_edges(mesh, parent.ends[pi], |e| {
+                span_inner_edges(mesh, parent.crease_ends(pi as u32), |e| {
                     still |= is_semi_sharp(sharp.child_edge(mesh, e, v));
                 });
                 if !still {
