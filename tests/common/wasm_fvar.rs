@@ -358,6 +358,13 @@ fn face_varying_channels_are_refined_through_subdivide_and_base_mesh() {
         "the refused call kept the values"
     );
 
+    // The caller's channel was read, never written, by every call above.
+    let uv = field(&field(&mesh, "attributes"), "uv");
+    assert_eq!(
+        (f32s(&uv, "array"), u32s(&uv, "indices")),
+        (square.clone(), (0..24).collect::<Vec<u32>>())
+    );
+
     // Schemes without face-varying rules refuse the channel; the instance works on.
     let refused = object(&[("scheme", "doo-sabin".into())]);
     assert_mentions(&thrown(subdivide(&mesh, &refused)), &["doo-sabin", "face-varying"]);
