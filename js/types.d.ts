@@ -33,6 +33,8 @@ export interface SubdivideMesh {
    * options: `subdivide(mesh, { ...mesh.tags, levels: 2 })`.
    */
   tags?: ObjTags;
+  /** Ignored, so that a `toDrawable` result can be passed as it is (to `vertexNormals`, ...). */
+  origins?: Uint32Array;
   /**
    * Data besides positions, by name (colours, skin weights, morph targets, UVs): each channel is
    * refined with the same weights as the positions (face-varying ones by OpenSubdiv's

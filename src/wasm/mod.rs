@@ -66,8 +66,9 @@ const MESH_KEYS: [&str; 4] = ["positions", "indices", "faceSizes", "attributes"]
 /// Fields of one attribute channel.
 const CHANNEL_KEYS: [&str; 3] = ["array", "itemSize", "indices"];
 
-/// Mesh fields accepted and ignored: the extra output of `subdivide` and of `readObj`.
-const IGNORED_MESH_KEYS: [&str; 2] = ["triangles", "tags"];
+/// Mesh fields accepted and ignored: the extra output of `subdivide`, `readObj` and
+/// `toDrawable`.
+const IGNORED_MESH_KEYS: [&str; 3] = ["triangles", "tags", "origins"];
 
 /// The most levels one call accepts (the library's [`scheme::MAX_LEVELS`]).
 pub const MAX_LEVELS: u32 = scheme::MAX_LEVELS as u32;

@@ -225,6 +225,16 @@ fn to_drawable_splits_seam_vertices() {
         let xs: Vec<f32> = f32s(&drawable, "positions").chunks(3).map(|p| p[0]).collect();
         assert_eq!(channel_of(&drawable, "x").0, xs, "{name}");
     }
+    // A drawable mesh is a mesh: the other helpers take it as it is (its origins ignored), and
+    // splitting it again changes nothing.
+    let drawable = ok(to_drawable(&square_mapped_cube()));
+    let again = ok(to_drawable(&drawable));
+    assert_eq!(u32s(&again, "origins"), (0..24).collect::<Vec<u32>>());
+    assert_eq!(f32s(&again, "positions"), f32s(&drawable, "positions"));
+    let normals =
+        subsurf::wasm::vertex_normals(&drawable).unwrap_or_else(|e| panic!("{}", message(e)));
+    assert_eq!(normals.length(), 3 * 24);
+
     // Without face-varying channels every used vertex stays, once, in order.
     let plain = ok(to_drawable(&cube()));
     assert_eq!(u32s(&plain, "origins"), (0..8).collect::<Vec<u32>>());
