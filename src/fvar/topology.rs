@@ -8,15 +8,6 @@ use crate::rules::crease::decay;
 use crate::rules::LevelTags;
 use crate::tags::SHARPNESS_INFINITE;
 
-/// The primal split that made a level: it fixes the child vertex order (`[vertices | face
-/// points | edge points]` for quads, `[vertices | edge points]` for triangles) and which parent
-/// value each child corner sees.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Split {
-    Quad,
-    Triangle,
-}
-
 /// The sharpness of one level as the face-varying rules read it: the level's tags when it has
 /// any (boundary and non-manifold edges are infinitely sharp there already), otherwise sharp
 /// boundary edges only; and under `edge-and-corner`, a vertex with one face is infinitely sharp
@@ -27,24 +18,57 @@ pub struct LevelSharpness<'a> {
     pub sharp_corners: bool,
 }
 
+/// The primal split that made a level: it fixes the child vertex order (`[vertices | face
+/// points | edge points]`, face points for the cells the split gives one) and which parent
+/// value each child corner sees. Every split gives parent cell `c` the child corners
+/// `4 s .. 4 (s + n)`, `s` its first half-edge and `n` its size: `n` quads around a face point
+/// (corner `4h` at the old vertex of parent half-edge `h`), or for a triangle four triangles in
+/// OpenSubdiv's order (see [`crate::refine::ptq`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Split {
+    /// Catmull-Clark's and bilinear's: every cell into quads.
+    Quad,
+    /// Loop's and midpoint's: every triangle into four.
+    Triangle,
+    /// Quad/Triangle's: triangles as [`Split::Triangle`], other cells as [`Split::Quad`].
+    Mixed,
+}
+
 impl Split {
-    fn corners(self) -> u32 {
+    /// True when the child cells of parent cell `c` are triangles.
+    fn splits_into_triangles(self, mesh: &HalfEdgeMesh, c: u32) -> bool {
         match self {
-            Split::Quad => 4,
-            Split::Triangle => 3,
+            Split::Quad => false,
+            Split::Triangle => true,
+            Split::Mixed => mesh.cell_range(c as usize).len() == 3,
         }
     }
 
-    /// The next corner of child half-edge `h` in its cell (every child cell has the same size).
-    fn child_next(self, h: u32) -> u32 {
-        let n = self.corners();
-        h - h % n + (h % n + 1) % n
+    /// The next (`forward`) or previous corner of child corner `h` in its child cell.
+    fn child_step(self, mesh: &HalfEdgeMesh, h: u32, forward: bool) -> u32 {
+        let parent = mesh.cell_of(h / 4);
+        let n = if self.splits_into_triangles(mesh, parent) { 3 } else { 4 };
+        let base = 4 * mesh.cell_range(parent as usize).start as u32;
+        let k = (h - base) % n;
+        let step = if forward { 1 } else { n - 1 };
+        h - k + (k + step) % n
     }
 
-    /// The previous corner of child half-edge `h` in its cell.
-    fn child_prev(self, h: u32) -> u32 {
-        let n = self.corners();
-        h - h % n + (h % n + n - 1) % n
+    /// For each cell, its face point's place among the face points (`u32::MAX` for a cell
+    /// without one); and how many there are.
+    pub(crate) fn face_points(self, mesh: &HalfEdgeMesh) -> (Vec<u32>, usize) {
+        let mut count = 0u32;
+        let map = (0..mesh.num_cells() as u32)
+            .map(|c| {
+                if self.splits_into_triangles(mesh, c) {
+                    u32::MAX
+                } else {
+                    count += 1;
+                    count - 1
+                }
+            })
+            .collect();
+        (map, count as usize)
     }
 }
 
@@ -330,6 +354,31 @@ impl FVarLevel {
         self.edge_tags.get(e as usize).copied().unwrap_or(0)
     }
 
+    /// Renumbers the edge tags of a level that [`Split::Mixed`] made from a parent with
+    /// `parent_vertices` vertices and its first edge point at `edge_base`, once `child` is
+    /// built from its faces (which numbers edges its own way): a half of a parent edge joins an
+    /// old vertex to the edge's point and keeps the edge's tag; inner edges have none.
+    pub(crate) fn renumber_edge_tags(
+        &mut self,
+        child: &HalfEdgeMesh,
+        parent_vertices: usize,
+        edge_base: usize,
+    ) {
+        let by_parent_edge = std::mem::take(&mut self.edge_tags);
+        self.edge_tags = child
+            .edge_vertices
+            .iter()
+            .map(|&[a, b]| {
+                let (low, high) = (a.min(b) as usize, a.max(b) as usize);
+                if low < parent_vertices && high >= edge_base {
+                    by_parent_edge.get(2 * (high - edge_base)).copied().unwrap_or(0)
+                } else {
+                    0
+                }
+            })
+            .collect();
+    }
+
     /// The crease ends of `value` (see [`FVarLevel::ends`]).
     pub(crate) fn crease_ends(&self, value: u32) -> [u32; 2] {
         match self.ends.binary_search_by_key(&value, |&(v, _)| v) {
@@ -353,8 +402,8 @@ impl FVarLevel {
         sharp: &LevelSharpness,
         mode: ModeRules,
     ) -> FVarLevel {
-        let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
-        let face_points = if split == Split::Quad { nf } else { 0 };
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        let (face_point_of, face_points) = split.face_points(mesh);
         let edge_base = nv + face_points;
         let nh = mesh.num_half_edges();
         let mut next = FVarLevel {
@@ -404,8 +453,9 @@ impl FVarLevel {
             // the edge point, bounded by the edge's halves.
             for &x in &mesh.edge_half_edges[mesh.edge_range(e)] {
                 if t & tag::CREASE != 0 {
-                    let toward_end = split.child_prev(4 * mesh.next_in_cell(x));
-                    next.ends.push((next.tags.len() as u32, [toward_end, split.child_next(4 * x)]));
+                    let toward_end = split.child_step(mesh, 4 * mesh.next_in_cell(x), false);
+                    let toward_start = split.child_step(mesh, 4 * x, true);
+                    next.ends.push((next.tags.len() as u32, [toward_end, toward_start]));
                 }
                 next.tags.push(t);
             }
@@ -430,31 +480,29 @@ impl FVarLevel {
             first + hs.iter().position(|&y| y == x).unwrap_or(0) as u32
         };
         let mut corners = Vec::with_capacity(4 * nh);
-        match split {
-            Split::Quad => {
-                for h in 0..mesh.num_half_edges() as u32 {
-                    let face = next.first[nv + mesh.cell_of(h) as usize];
+        for c in 0..mesh.num_cells() as u32 {
+            let cell = mesh.cell_range(c as usize);
+            if split.splits_into_triangles(mesh, c) {
+                let [h0, h1, h2] = [0, 1, 2].map(|k| (cell.start + k) as u32);
+                let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
+                corners.extend_from_slice(&[
+                    old(h0),
+                    e0,
+                    e2,
+                    e0,
+                    old(h1),
+                    e1,
+                    e2,
+                    e1,
+                    old(h2),
+                    e1,
+                    e2,
+                    e0,
+                ]);
+            } else {
+                let face = next.first[nv + face_point_of[c as usize] as usize];
+                for h in cell.map(|h| h as u32) {
                     corners.extend_from_slice(&[old(h), side(h), face, side(mesh.prev_in_cell(h))]);
-                }
-            }
-            Split::Triangle => {
-                for t in 0..nf as u32 {
-                    let [h0, h1, h2] = [3 * t, 3 * t + 1, 3 * t + 2];
-                    let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
-                    corners.extend_from_slice(&[
-                        old(h0),
-                        e0,
-                        e2,
-                        e0,
-                        old(h1),
-                        e1,
-                        e2,
-                        e1,
-                        old(h2),
-                        e1,
-                        e2,
-                        e0,
-                    ]);
                 }
             }
         }
