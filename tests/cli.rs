@@ -151,6 +151,35 @@ fn uv_errors_name_the_file_and_line() {
 }
 
 #[test]
+fn schemes_without_face_varying_rules_drop_the_uvs_with_a_warning() {
+    // Doo-Sabin on the cube: F' = V + E + F = 26 faces, whatever the UVs; the file is written
+    // without vt and stderr says why.
+    let dir = temp_dir("uv-doo-sabin");
+    let (input, output) = (dir.join("in.obj"), dir.join("out.obj"));
+    std::fs::write(&input, cube_with_square_uvs()).unwrap();
+    let run = subsurf(&[
+        "--scheme",
+        "doo-sabin",
+        input.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    for part in ["warning", "no texture coordinates", "doo-sabin", "--ignore-uv"] {
+        assert!(stderr.contains(part), "{part:?}: {stderr}");
+    }
+    let out = read_obj_with_tags(&std::fs::read_to_string(&output).unwrap()).unwrap();
+    assert_eq!(out.mesh.num_faces(), 26);
+    assert!(out.attributes.is_empty());
+    // Other refusals stay errors: Loop on the cube's quads, with or without UVs.
+    let run = subsurf(&["--scheme", "loop", input.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success() && stderr.contains("triangles only"), "{stderr}");
+    assert!(!stderr.contains("warning"), "{stderr}");
+}
+
+#[test]
 fn ignore_uv_writes_no_vt() {
     let out = run_on("no-uv", &cube_with_square_uvs(), &["--ignore-uv", "--levels", "1"]);
     assert!(out.attributes.is_empty());
