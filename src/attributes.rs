@@ -29,6 +29,9 @@ use crate::primvar::Rows;
 /// The most floats one value of a channel may have.
 pub const MAX_ITEM_SIZE: usize = 16;
 
+// Face-varying channels are summed in rows of at most this width.
+const _: () = assert!(MAX_ITEM_SIZE <= crate::primvar::FVAR_MAX_WIDTH);
+
 /// One named channel of `item_size` floats per value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Attribute {

@@ -160,8 +160,9 @@ impl Weights for RowSum<'_> {
     }
 }
 
-/// The widest row a [`FVarSum`] sums (face-varying channels are grouped up to it).
-pub const FVAR_MAX_WIDTH: usize = crate::attributes::MAX_ITEM_SIZE;
+/// The widest row a [`FVarSum`] sums (face-varying channels are grouped up to it; no channel
+/// is wider, see `attributes::MAX_ITEM_SIZE`).
+pub const FVAR_MAX_WIDTH: usize = 16;
 
 /// Sums weighted rows of a face-varying channel (`width` floats per value, `N` when `N` is not
 /// 0: UVs get a sum the compiler unrolls) for one new value whose vertex topology matches the

@@ -4,7 +4,7 @@
 
 use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
-use crate::fvar::{FVarChannel, LevelSharpness, Split};
+use crate::fvar::{FVarChannel, LevelSharpness, MixedRules, PrimalRules, Split};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 pub use crate::options::{
     Boundary, FVarLinear, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
@@ -293,16 +293,13 @@ fn refine_levels<'a>(
             }
             level_tags = None;
         }
-        if !fvar.is_empty() && scheme == Scheme::QuadTriangle {
-            return Err(Error::Unsupported(format!(
-                "level {}: {scheme} does not refine face-varying channels (with indices) yet; use catmull-clark, loop, bilinear, midpoint, doo-sabin or sqrt3",
-                level + 1
-            )));
-        }
         let sharp = LevelSharpness {
             tags: level_tags.as_ref(),
             sharp_corners: boundary == Boundary::EdgeAndCorner,
         };
+        // After the mixed split, the child mesh is built from its faces, which numbers edges
+        // its own way: the face-varying edge tags follow (parent vertices, first edge point).
+        let mut renumber = None;
         let mut primal = Primal { rows: &rows, fvar: &mut fvar, sharp, mode: fvar_mode, last };
         let (child, next_tags) = match (scheme, &level_tags) {
             (Scheme::CatmullClark, Some(t)) => {
@@ -320,7 +317,14 @@ fn refine_levels<'a>(
             (Scheme::Loop, None) => primal.level::<Ptq, _>(mesh, &Loop { boundary }, false),
             (Scheme::Midpoint, _) => primal.level::<Ptq, _>(mesh, &Midpoint, true),
             (Scheme::QuadTriangle, _) => {
-                let (poly, rows) = quad_tri::refine_with(&mesh, &QuadTriangle { boundary }, &rows);
+                let rules = QuadTriangle { boundary };
+                for channel in primal.fvar.iter_mut() {
+                    let rules = MixedRules(&rules);
+                    channel.refine(&mesh, Split::Mixed, &rules, false, &sharp, fvar_mode);
+                }
+                let (_, count) = Split::Mixed.face_points(&mesh);
+                renumber = Some((mesh.num_vertices(), mesh.num_vertices() + count));
+                let (poly, rows) = quad_tri::refine_with(&mesh, &rules, &rows);
                 (Level::Poly(poly, rows), None)
             }
             (Scheme::DooSabin, _) => {
@@ -371,7 +375,13 @@ fn refine_levels<'a>(
             }
             Level::Poly(poly, child_rows) => {
                 rows = child_rows;
-                Cow::Owned(HalfEdgeMesh::from_poly(&poly)?)
+                let child = HalfEdgeMesh::from_poly(&poly)?;
+                if let Some((parent_vertices, edge_base)) = renumber {
+                    for channel in fvar.iter_mut().filter(|c| c.analysed) {
+                        channel.level.renumber_edge_tags(&child, parent_vertices, edge_base);
+                    }
+                }
+                Cow::Owned(child)
             }
             Level::Mesh(mesh, child_rows) => {
                 rows = child_rows;
@@ -417,7 +427,8 @@ impl Primal<'_, '_> {
     ) -> (Level<'a>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
         for channel in self.fvar.iter_mut() {
-            channel.refine::<S, R>(&mesh, split, rules, linear, &self.sharp, self.mode);
+            let rules = PrimalRules::<S, R>::new(rules);
+            channel.refine(&mesh, split, &rules, linear, &self.sharp, self.mode);
         }
         let tags = self.sharp.tags;
         let rows = self.rows;

@@ -4,19 +4,64 @@
 //! follows its crease, blended while semi-sharp features decay.
 
 use super::tag;
-use super::topology::{span_inner_edges, FVarLevel, LevelSharpness};
+use super::topology::{span_inner_edges, FVarLevel, LevelSharpness, Split};
 use crate::mesh::HalfEdgeMesh;
 use crate::primvar::{FVarSum, RowSum};
 use crate::refine::PrimalSplit;
 use crate::rules::crease::decay;
+use crate::rules::{MixedSplitRules, Weights};
+use std::marker::PhantomData;
+
+/// The rules of a split as the face-varying interpolation calls them: the weights of an edge
+/// point and of a vertex's new value (face points are always centroids).
+pub trait ValueRules {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights);
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights);
+}
+
+/// The rules `R` of the primal split `S`.
+pub struct PrimalRules<'r, S, R>(&'r R, PhantomData<S>);
+
+impl<'r, S: PrimalSplit<R>, R> PrimalRules<'r, S, R> {
+    pub fn new(rules: &'r R) -> Self {
+        PrimalRules(rules, PhantomData)
+    }
+}
+
+impl<S: PrimalSplit<R>, R> ValueRules for PrimalRules<'_, S, R> {
+    #[inline]
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        S::edge_rule(self.0, mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        S::vertex_rule(self.0, mesh, vertex, w)
+    }
+}
+
+/// The rules of the mixed split (Quad/Triangle).
+pub struct MixedRules<'r, R>(pub &'r R);
+
+impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
+    #[inline]
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        self.0.edge_point(mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        self.0.vertex_point(mesh, vertex, w)
+    }
+}
 
 /// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
-/// on the primal split `S` with `rules`; `N` is the width when it is not 0 (a sum unrolled for
-/// it). With `linear` (mode `all`, or a linear scheme), every
+/// on `split` with `rules`; `N` is the width when it is not 0 (a sum unrolled for it). With `linear` (mode `all`, or a linear scheme), every
 /// value is interpolated linearly. `sharp` is the parent level's sharpness.
-pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
+pub fn interpolate<F: ValueRules, const N: usize>(
     mesh: &HalfEdgeMesh,
-    rules: &R,
+    split: Split,
+    rules: &F,
     parent: &FVarLevel,
     child: &mut FVarLevel,
     linear: bool,
@@ -27,8 +72,11 @@ pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
     let mut out = vec![0.0f32; child.num_values() * width];
     let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
 
+    // Every cell's centroid when the rules may weight it (the mixed split's rules read those of
+    // triangles too); the child has those of the cells that get a face point.
+    let (face_point_of, face_points) = split.face_points(mesh);
     let mut face_values = Vec::new();
-    if S::FACE_POINTS {
+    if split != Split::Triangle {
         face_values = vec![0.0f32; nf * width];
         for (c, face) in face_values.chunks_exact_mut(width.max(1)).enumerate() {
             let range = mesh.cell_range(c);
@@ -37,11 +85,13 @@ pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
                 RowSum::add(face, row(parent.corner_values[h]), 1.0);
             }
             face.iter_mut().for_each(|x| *x *= scale);
-            let at = child.first[nv + c] as usize * width;
-            out[at..at + width].copy_from_slice(face);
+            if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
+                let at = (nv + k as usize) * width;
+                out[at..at + width].copy_from_slice(face);
+            }
         }
     }
-    let edge_base = nv + if S::FACE_POINTS { nf } else { 0 };
+    let edge_base = nv + face_points;
     let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, &face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
@@ -53,39 +103,34 @@ pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
     for e in 0..mesh.num_edges() as u32 {
         let [a, b] = mesh.edge_vertices[e as usize];
         let hs = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
-        let first = child.first[edge_base + e as usize];
-        if child.tags[first as usize] & tag::MISMATCH == 0 {
+        let cv = edge_base as u32 + e;
+        if child.tags[cv as usize] & tag::MISMATCH == 0 {
             let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
             if linear {
-                midpoint(&mut out[slot(first)], ends[0].1, ends[1].1);
+                midpoint(&mut out[slot(cv)], ends[0].1, ends[1].1);
             } else {
-                sum.eval_into(&mut out[slot(first)], ends, |w| S::edge_rule(rules, mesh, e, w));
+                sum.eval_into(&mut out[slot(cv)], ends, |w| rules.edge_point(mesh, e, w));
             }
             continue;
         }
-        let count = child.first[edge_base + e as usize + 1] - first;
-        for (j, &x) in hs.iter().take(count as usize).enumerate() {
+        for (j, &x) in hs.iter().take(child.count(cv) as usize).enumerate() {
             let (va, vb) = (parent.value_at(mesh, x, a), parent.value_at(mesh, x, b));
-            midpoint(&mut out[slot(first + j as u32)], va, vb);
+            midpoint(&mut out[slot(child.value(cv, j as u32))], va, vb);
         }
     }
 
     for v in 0..nv as u32 {
-        let pf = parent.first[v as usize];
-        let cf = child.first[v as usize];
-        if parent.tags[pf as usize] & tag::MISMATCH == 0 {
+        if parent.tags[v as usize] & tag::MISMATCH == 0 {
             if linear || mesh.out_half_edges(v).is_empty() {
-                out[slot(cf)].copy_from_slice(row(pf));
+                out[slot(v)].copy_from_slice(row(v));
             } else {
-                sum.eval_into(&mut out[slot(cf)], [(v, pf); 2], |w| {
-                    S::vertex_rule(rules, mesh, v, w)
-                });
+                sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.vertex_point(mesh, v, w));
             }
             continue;
         }
-        let count = parent.first[v as usize + 1] - pf;
+        let count = parent.count(v);
         for j in 0..count {
-            let (p, c) = (pf + j, cf + j);
+            let (p, c) = (parent.value(v, j), child.value(v, j));
             let child_tag = child.tags[c as usize];
             if linear || child_tag & tag::CREASE == 0 {
                 out[slot(c)].copy_from_slice(row(p));
@@ -100,7 +145,11 @@ pub fn interpolate<S: PrimalSplit<R>, R, const N: usize>(
             let (mut vertex_weight, mut end_weight) = (0.75f32, 0.125f32);
             if parent_tag & tag::SEMI_SHARP != 0 {
                 // A value sharpened by the other one takes that one's transition.
-                let source = if parent_tag & tag::DEP_SHARP != 0 { pf + (1 - j.min(1)) } else { p };
+                let source = if parent_tag & tag::DEP_SHARP != 0 {
+                    parent.value(v, 1 - j.min(1))
+                } else {
+                    p
+                };
                 let corner = fractional_weight(mesh, parent, sharp, v, source);
                 let crease = 1.0 - corner;
                 vertex_weight = crease * 0.75 + corner;

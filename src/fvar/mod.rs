@@ -52,7 +52,7 @@ mod siblings;
 mod sqrt3;
 mod topology;
 
-pub use interpolate::interpolate;
+pub use interpolate::{interpolate, MixedRules, PrimalRules, ValueRules};
 pub use topology::{FVarLevel, LevelSharpness, Split};
 
 use crate::options::FVarLinear;
@@ -119,7 +119,6 @@ impl ModeRules {
 }
 
 use crate::mesh::HalfEdgeMesh;
-use crate::refine::PrimalSplit;
 
 /// A face-varying channel between levels (several channels with the same indices travel as
 /// one, side by side).
@@ -138,13 +137,13 @@ impl FVarChannel {
         FVarChannel { level, analysed: false }
     }
 
-    /// Refines the channel with one level of the primal split `S` (`split`) of `mesh` with
-    /// `rules` (linear ones when `linear`), whose sharpness is `sharp`.
-    pub fn refine<S: PrimalSplit<R>, R>(
+    /// Refines the channel with one level of `split` of `mesh` with `rules` (linear ones when
+    /// `linear`), whose sharpness is `sharp`.
+    pub fn refine(
         &mut self,
         mesh: &HalfEdgeMesh,
         split: Split,
-        rules: &R,
+        rules: &impl ValueRules,
         linear: bool,
         sharp: &LevelSharpness,
         mode: FVarLinear,
@@ -166,8 +165,8 @@ impl FVarChannel {
         let (parent, linear) = (&self.level, linear || mode.linear);
         // UVs get a sum unrolled for two floats; other widths share one loop.
         match parent.width {
-            2 => interpolate::<S, R, 2>(mesh, rules, parent, &mut child, linear, sharp),
-            _ => interpolate::<S, R, 0>(mesh, rules, parent, &mut child, linear, sharp),
+            2 => interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp),
+            _ => interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp),
         }
         self.level = child;
     }

@@ -8,15 +8,6 @@ use crate::rules::crease::decay;
 use crate::rules::LevelTags;
 use crate::tags::SHARPNESS_INFINITE;
 
-/// The primal split that made a level: it fixes the child vertex order (`[vertices | face
-/// points | edge points]` for quads, `[vertices | edge points]` for triangles) and which parent
-/// value each child corner sees.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Split {
-    Quad,
-    Triangle,
-}
-
 /// The sharpness of one level as the face-varying rules read it: the level's tags when it has
 /// any (boundary and non-manifold edges are infinitely sharp there already), otherwise sharp
 /// boundary edges only; and under `edge-and-corner`, a vertex with one face is infinitely sharp
@@ -27,24 +18,57 @@ pub struct LevelSharpness<'a> {
     pub sharp_corners: bool,
 }
 
+/// The primal split that made a level: it fixes the child vertex order (`[vertices | face
+/// points | edge points]`, face points for the cells the split gives one) and which parent
+/// value each child corner sees. Every split gives parent cell `c` the child corners
+/// `4 s .. 4 (s + n)`, `s` its first half-edge and `n` its size: `n` quads around a face point
+/// (corner `4h` at the old vertex of parent half-edge `h`), or for a triangle four triangles in
+/// OpenSubdiv's order (see [`crate::refine::ptq`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Split {
+    /// Catmull-Clark's and bilinear's: every cell into quads.
+    Quad,
+    /// Loop's and midpoint's: every triangle into four.
+    Triangle,
+    /// Quad/Triangle's: triangles as [`Split::Triangle`], other cells as [`Split::Quad`].
+    Mixed,
+}
+
 impl Split {
-    fn corners(self) -> u32 {
+    /// True when the child cells of parent cell `c` are triangles.
+    fn splits_into_triangles(self, mesh: &HalfEdgeMesh, c: u32) -> bool {
         match self {
-            Split::Quad => 4,
-            Split::Triangle => 3,
+            Split::Quad => false,
+            Split::Triangle => true,
+            Split::Mixed => mesh.cell_range(c as usize).len() == 3,
         }
     }
 
-    /// The next corner of child half-edge `h` in its cell (every child cell has the same size).
-    fn child_next(self, h: u32) -> u32 {
-        let n = self.corners();
-        h - h % n + (h % n + 1) % n
+    /// The next (`forward`) or previous corner of child corner `h` in its child cell.
+    fn child_step(self, mesh: &HalfEdgeMesh, h: u32, forward: bool) -> u32 {
+        let parent = mesh.cell_of(h / 4);
+        let n = if self.splits_into_triangles(mesh, parent) { 3 } else { 4 };
+        let base = 4 * mesh.cell_range(parent as usize).start as u32;
+        let k = (h - base) % n;
+        let step = if forward { 1 } else { n - 1 };
+        h - k + (k + step) % n
     }
 
-    /// The previous corner of child half-edge `h` in its cell.
-    fn child_prev(self, h: u32) -> u32 {
-        let n = self.corners();
-        h - h % n + (h % n + n - 1) % n
+    /// For each cell, its face point's place among the face points (`u32::MAX` for a cell
+    /// without one); and how many there are.
+    pub(crate) fn face_points(self, mesh: &HalfEdgeMesh) -> (Vec<u32>, usize) {
+        let mut count = 0u32;
+        let map = (0..mesh.num_cells() as u32)
+            .map(|c| {
+                if self.splits_into_triangles(mesh, c) {
+                    u32::MAX
+                } else {
+                    count += 1;
+                    count - 1
+                }
+            })
+            .collect();
+        (map, count as usize)
     }
 }
 
@@ -79,22 +103,85 @@ fn is_semi_sharp(s: f32) -> bool {
     s > 0.0 && s < SHARPNESS_INFINITE
 }
 
-/// One level of a face-varying channel: its values (`width` floats each, numbered vertex by
-/// vertex, so vertex `v`'s values are `first[v]..first[v + 1]`), the value each face corner
-/// (half-edge) sees, each value's tag ([`tag`]) and crease ends, and each edge's tag
-/// ([`edge_tag`]).
+/// One level of a face-varying channel: its values (`width` floats each), the value each face
+/// corner (half-edge) sees, each value's tag ([`tag`]) and crease ends, and each edge's tag
+/// ([`edge_tag`]). A vertex's first value is numbered as the vertex; a vertex with several
+/// values (only along seams) has the others after all vertices' first ones. So wherever a level
+/// has no seam, its value indices are its vertex indices, and refined corner values follow the
+/// child faces' own indices.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct FVarLevel {
     pub width: usize,
     pub values: Vec<f32>,
     pub corner_values: Vec<u32>,
-    pub(crate) first: Vec<u32>,
+    /// Number of vertices: values below it are vertices' first values.
+    pub(crate) vertices: u32,
     pub(crate) tags: Vec<u8>,
+    /// The vertices with more than one value, in vertex order: `[vertex, its second value,
+    /// number of values]`.
+    pub(crate) several: Vec<[u32; 3]>,
     /// For each crease or semi-sharp value, in value order: the value, and the vertex's
     /// outgoing half-edges in the first and last face of its span, whose next and previous
     /// corners hold the crease's end values. Sparse: such values lie along seams only.
     pub(crate) ends: Vec<(u32, [u32; 2])>,
     pub(crate) edge_tags: Vec<u8>,
+}
+
+/// Builds a level's value numbering vertex by vertex (see [`FVarLevel`]).
+struct Numbering {
+    pub(crate) vertices: u32,
+    tags: Vec<u8>,
+    pub(crate) several: Vec<[u32; 3]>,
+    ends: Vec<(u32, [u32; 2])>,
+}
+
+impl Numbering {
+    fn new(vertices: usize) -> Self {
+        Numbering {
+            vertices: vertices as u32,
+            tags: vec![0; vertices],
+            several: Vec::new(),
+            ends: Vec::new(),
+        }
+    }
+
+    /// Gives vertex `v` `count` values and returns the index of its second (if any).
+    fn add(&mut self, v: u32, count: u32) -> u32 {
+        let second = self.tags.len() as u32;
+        if count > 1 {
+            self.several.push([v, second, count]);
+            self.tags.resize(self.tags.len() + count as usize - 1, 0);
+        }
+        second
+    }
+
+    /// Sets value `i`'s tag and crease ends.
+    fn tag(&mut self, i: u32, tag: u8, ends: Option<[u32; 2]>) {
+        self.tags[i as usize] = tag;
+        if let Some(ends) = ends {
+            self.ends.push((i, ends));
+        }
+    }
+
+    fn finish(
+        mut self,
+        width: usize,
+        values: Vec<f32>,
+        corner_values: Vec<u32>,
+        edge_tags: Vec<u8>,
+    ) -> FVarLevel {
+        self.ends.sort_unstable_by_key(|&(i, _)| i);
+        FVarLevel {
+            width,
+            values,
+            corner_values,
+            vertices: self.vertices,
+            tags: self.tags,
+            several: self.several,
+            ends: self.ends,
+            edge_tags,
+        }
+    }
 }
 
 /// What gathering a value's span finds (OpenSubdiv's `FVarLevel::ValueSpan`).
@@ -119,6 +206,40 @@ impl FVarLevel {
     /// Number of values.
     pub fn num_values(&self) -> usize {
         self.tags.len()
+    }
+
+    /// `[second value, count]` of vertex `v` when it has several values.
+    #[inline]
+    fn several_of(&self, v: u32) -> Option<[u32; 2]> {
+        if self.tags[v as usize] & tag::MISMATCH == 0 {
+            return None;
+        }
+        let i = self.several.binary_search_by_key(&v, |x| x[0]).ok()?;
+        Some([self.several[i][1], self.several[i][2]])
+    }
+
+    /// Number of values of vertex `v`.
+    #[inline]
+    pub(crate) fn count(&self, v: u32) -> u32 {
+        self.several_of(v).map_or(1, |[_, n]| n)
+    }
+
+    /// Value `s` of vertex `v` (its first is `v`).
+    #[inline]
+    pub(crate) fn value(&self, v: u32, s: u32) -> u32 {
+        match (s, self.several_of(v)) {
+            (0, _) | (_, None) => v,
+            (s, Some([second, _])) => second + s - 1,
+        }
+    }
+
+    /// Which of vertex `v`'s values `value` is.
+    #[inline]
+    fn sibling(&self, v: u32, value: u32) -> u32 {
+        match self.several_of(v) {
+            Some([second, _]) if value != v => value - second + 1,
+            _ => 0,
+        }
     }
 
     /// The first level's topology from a channel's `indices` (one per face corner) into
@@ -194,28 +315,18 @@ impl FVarLevel {
             }
         }
 
-        let mut level = FVarLevel {
-            width,
-            values: Vec::with_capacity(nv * width),
-            corner_values: vec![0; mesh.num_half_edges()],
-            first: Vec::with_capacity(nv + 1),
-            tags: Vec::with_capacity(nv),
-            ends: Vec::new(),
-            edge_tags,
-        };
+        let mut numbering = Numbering::new(nv);
+        let mut values_out = vec![0.0f32; nv * width];
+        let mut extra_values = Vec::new();
+        let mut corner_values = vec![0u32; mesh.num_half_edges()];
         let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
         let maybe_non_manifold =
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
         let (mut fan, mut siblings, mut uniques) = (Vec::new(), Vec::new(), Vec::new());
         for v in 0..nv as u32 {
-            let start = level.tags.len() as u32;
-            level.first.push(start);
             let out = mesh.out_half_edges(v);
-            let Some(&first_corner) = out.first() else {
-                // A vertex without faces: one value no corner sees.
-                level.push_value(&vec![0.0; width], 0, None);
-                continue;
-            };
+            // A vertex without faces keeps one value (zero) that no corner sees.
+            let Some(&first_corner) = out.first() else { continue };
             let manifold = !maybe_non_manifold
                 || (!sharp.tags.is_some_and(|t| t.is_non_manifold_vertex(v))
                     && fan_order(mesh, v, &mut fan).is_some());
@@ -223,9 +334,10 @@ impl FVarLevel {
                 let value = indices[first_corner as usize];
                 // Faces around a non-manifold vertex may disagree without any seam.
                 if manifold || out.iter().all(|&h| indices[h as usize] == value) {
-                    level.push_value(row(value), 0, None);
+                    values_out[v as usize * width..(v as usize + 1) * width]
+                        .copy_from_slice(row(value));
                     for &h in out {
-                        level.corner_values[h as usize] = start;
+                        corner_values[h as usize] = v;
                     }
                     continue;
                 }
@@ -256,11 +368,15 @@ impl FVarLevel {
                     })
                 };
                 siblings.push(s);
-                level.corner_values[h as usize] = start + s as u32;
+            }
+            let second = numbering.add(v, uniques.len() as u32);
+            let value_of = |s: usize| if s == 0 { v } else { second + s as u32 - 1 };
+            for (&h, &s) in fan.iter().zip(&siblings) {
+                corner_values[h as usize] = value_of(s);
             }
             let spans = if manifold {
                 let class = |e: u32| {
-                    if level.edge_tags[e as usize] & edge_tag::MISMATCH != 0 {
+                    if edge_tags[e as usize] & edge_tag::MISMATCH != 0 {
                         return EdgeClass::Seam;
                     }
                     match sharp.edge(mesh, e) {
@@ -308,19 +424,17 @@ impl FVarLevel {
                     let last = (span.start + span.size - 1) % fan.len();
                     ends = Some([fan[span.start], fan[last]]);
                 }
-                level.push_value(row(uniques[s]), t, ends);
+                numbering.tag(value_of(s), t, ends);
+                if s == 0 {
+                    values_out[v as usize * width..(v as usize + 1) * width]
+                        .copy_from_slice(row(uniques[0]));
+                } else {
+                    extra_values.extend_from_slice(row(uniques[s]));
+                }
             }
         }
-        level.first.push(level.tags.len() as u32);
-        level
-    }
-
-    fn push_value(&mut self, row: &[f32], tag: u8, ends: Option<[u32; 2]>) {
-        if let Some(ends) = ends {
-            self.ends.push((self.tags.len() as u32, ends));
-        }
-        self.values.extend_from_slice(row);
-        self.tags.push(tag);
+        values_out.extend_from_slice(&extra_values);
+        numbering.finish(width, values_out, corner_values, edge_tags)
     }
 
     /// The tag of edge `e`; edges past the stored ones (a refined level's inner edges) have
@@ -328,6 +442,31 @@ impl FVarLevel {
     #[inline]
     pub(crate) fn edge_tag(&self, e: u32) -> u8 {
         self.edge_tags.get(e as usize).copied().unwrap_or(0)
+    }
+
+    /// Renumbers the edge tags of a level that [`Split::Mixed`] made from a parent with
+    /// `parent_vertices` vertices and its first edge point at `edge_base`, once `child` is
+    /// built from its faces (which numbers edges its own way): a half of a parent edge joins an
+    /// old vertex to the edge's point and keeps the edge's tag; inner edges have none.
+    pub(crate) fn renumber_edge_tags(
+        &mut self,
+        child: &HalfEdgeMesh,
+        parent_vertices: usize,
+        edge_base: usize,
+    ) {
+        let by_parent_edge = std::mem::take(&mut self.edge_tags);
+        self.edge_tags = child
+            .edge_vertices
+            .iter()
+            .map(|&[a, b]| {
+                let (low, high) = (a.min(b) as usize, a.max(b) as usize);
+                if low < parent_vertices && high >= edge_base {
+                    by_parent_edge.get(2 * (high - edge_base)).copied().unwrap_or(0)
+                } else {
+                    0
+                }
+            })
+            .collect();
     }
 
     /// The crease ends of `value` (see [`FVarLevel::ends`]).
@@ -353,108 +492,104 @@ impl FVarLevel {
         sharp: &LevelSharpness,
         mode: ModeRules,
     ) -> FVarLevel {
-        let (nv, nf, ne) = (mesh.num_vertices(), mesh.num_cells(), mesh.num_edges());
-        let face_points = if split == Split::Quad { nf } else { 0 };
+        let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
+        let (face_point_of, face_points) = split.face_points(mesh);
         let edge_base = nv + face_points;
-        let nh = mesh.num_half_edges();
-        let mut next = FVarLevel {
-            width: self.width,
-            values: Vec::new(),
-            corner_values: Vec::new(),
-            first: Vec::with_capacity(edge_base + ne + 1),
-            tags: Vec::with_capacity(edge_base + ne),
-            ends: Vec::new(),
-            // The inner edges that follow are never seams (see `edge_tag`).
-            edge_tags: vec![0; 2 * ne],
-        };
+        let mut next = Numbering::new(edge_base + ne);
         // Children of old vertices: one value per parent value when the vertex mismatched.
-        for v in 0..nv {
-            next.first.push(next.tags.len() as u32);
-            let values = self.first[v] as usize..self.first[v + 1] as usize;
-            if self.tags[values.start] & tag::MISMATCH == 0 {
-                next.tags.push(0);
+        for v in 0..nv as u32 {
+            if self.tags[v as usize] & tag::MISMATCH == 0 {
                 continue;
             }
-            for i in values {
-                if self.tags[i] & (tag::CREASE | tag::SEMI_SHARP) != 0 {
-                    // The child face at parent corner `h` leaves the child vertex on `4h`.
-                    let ends = self.crease_ends(i as u32).map(|h| 4 * h);
-                    next.ends.push((next.tags.len() as u32, ends));
-                }
-                next.tags.push(self.tags[i]);
+            let count = self.count(v);
+            let second = next.add(v, count);
+            for j in 0..count {
+                let (p, c) = (self.value(v, j), if j == 0 { v } else { second + j - 1 });
+                let t = self.tags[p as usize];
+                // The child face at parent corner `h` leaves the child vertex on `4h`.
+                let ends = (t & (tag::CREASE | tag::SEMI_SHARP) != 0)
+                    .then(|| self.crease_ends(p).map(|h| 4 * h));
+                next.tag(c, t, ends);
             }
-        }
-        for _ in 0..face_points {
-            next.first.push(next.tags.len() as u32);
-            next.tags.push(0);
         }
         let split_tag =
             if mode.smooth_boundaries() { tag::MISMATCH | tag::CREASE } else { tag::MISMATCH };
+        // The inner edges that follow the halves of parent edges are never seams (see
+        // `edge_tag`).
+        let mut edge_tags = vec![0u8; 2 * ne];
         for e in 0..ne {
-            next.first.push(next.tags.len() as u32);
             let et = self.edge_tag(e as u32);
-            next.edge_tags[2 * e] = et;
-            next.edge_tags[2 * e + 1] = et;
-            let t = if et != 0 { split_tag } else { 0 };
+            edge_tags[2 * e] = et;
+            edge_tags[2 * e + 1] = et;
+            if et == 0 {
+                continue;
+            }
+            let cv = (edge_base + e) as u32;
             if et & edge_tag::MISMATCH == 0 {
-                next.tags.push(t);
+                next.tag(cv, split_tag, None);
                 continue;
             }
             // A seam's edge point: one value per face, its span the children of that face at
             // the edge point, bounded by the edge's halves.
-            for &x in &mesh.edge_half_edges[mesh.edge_range(e)] {
-                if t & tag::CREASE != 0 {
-                    let toward_end = split.child_prev(4 * mesh.next_in_cell(x));
-                    next.ends.push((next.tags.len() as u32, [toward_end, split.child_next(4 * x)]));
-                }
-                next.tags.push(t);
+            let sides = &mesh.edge_half_edges[mesh.edge_range(e)];
+            let second = next.add(cv, sides.len() as u32);
+            for (j, &x) in sides.iter().enumerate() {
+                let c = if j == 0 { cv } else { second + j as u32 - 1 };
+                let ends = (split_tag & tag::CREASE != 0).then(|| {
+                    let toward_end = split.child_step(mesh, 4 * mesh.next_in_cell(x), false);
+                    [toward_end, split.child_step(mesh, 4 * x, true)]
+                });
+                next.tag(c, split_tag, ends);
             }
         }
-        next.first.push(next.tags.len() as u32);
+        let mut next = next.finish(self.width, Vec::new(), Vec::new(), edge_tags);
         if mode.smooth_boundaries() && sharp.tags.is_some() {
             next.reclassify_semi_sharp(mesh, self, sharp, mode);
         }
 
-        // The value each child corner sees.
+        // The value each child corner sees: where nothing mismatches, the child vertex itself.
         let old = |h: u32| {
             let v = mesh.he_from[h as usize];
-            next.first[v as usize] + (self.corner_values[h as usize] - self.first[v as usize])
+            let p = self.corner_values[h as usize];
+            if p == v {
+                v
+            } else {
+                next.value(v, self.sibling(v, p))
+            }
         };
         let side = |x: u32| {
-            let e = mesh.he_edge[x as usize] as usize;
-            let first = next.first[edge_base + e];
-            if self.edge_tag(e as u32) & edge_tag::MISMATCH == 0 {
-                return first;
+            let e = mesh.he_edge[x as usize];
+            let cv = edge_base as u32 + e;
+            if self.edge_tag(e) & edge_tag::MISMATCH == 0 {
+                return cv;
             }
-            let hs = &mesh.edge_half_edges[mesh.edge_range(e)];
-            first + hs.iter().position(|&y| y == x).unwrap_or(0) as u32
+            let sides = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
+            next.value(cv, sides.iter().position(|&y| y == x).unwrap_or(0) as u32)
         };
-        let mut corners = Vec::with_capacity(4 * nh);
-        match split {
-            Split::Quad => {
-                for h in 0..mesh.num_half_edges() as u32 {
-                    let face = next.first[nv + mesh.cell_of(h) as usize];
+        let mut corners = Vec::with_capacity(4 * mesh.num_half_edges());
+        for c in 0..mesh.num_cells() as u32 {
+            let cell = mesh.cell_range(c as usize);
+            if split.splits_into_triangles(mesh, c) {
+                let [h0, h1, h2] = [0, 1, 2].map(|k| (cell.start + k) as u32);
+                let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
+                corners.extend_from_slice(&[
+                    old(h0),
+                    e0,
+                    e2,
+                    e0,
+                    old(h1),
+                    e1,
+                    e2,
+                    e1,
+                    old(h2),
+                    e1,
+                    e2,
+                    e0,
+                ]);
+            } else {
+                let face = (nv as u32) + face_point_of[c as usize];
+                for h in cell.map(|h| h as u32) {
                     corners.extend_from_slice(&[old(h), side(h), face, side(mesh.prev_in_cell(h))]);
-                }
-            }
-            Split::Triangle => {
-                for t in 0..nf as u32 {
-                    let [h0, h1, h2] = [3 * t, 3 * t + 1, 3 * t + 2];
-                    let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
-                    corners.extend_from_slice(&[
-                        old(h0),
-                        e0,
-                        e2,
-                        e0,
-                        old(h1),
-                        e1,
-                        e2,
-                        e1,
-                        old(h2),
-                        e1,
-                        e2,
-                        e0,
-                    ]);
                 }
             }
         }
@@ -473,8 +608,7 @@ impl FVarLevel {
         mode: ModeRules,
     ) {
         for v in 0..mesh.num_vertices() as u32 {
-            let values = self.first[v as usize] as usize..self.first[v as usize + 1] as usize;
-            if self.tags[values.start] & tag::MISMATCH == 0 {
+            if self.tags[v as usize] & tag::MISMATCH == 0 {
                 continue;
             }
             let vertex_sharpness = sharp.vertex(mesh, v);
@@ -489,41 +623,37 @@ impl FVarLevel {
             if !is_semi_sharp(vertex_sharpness) && !semi_edges {
                 continue;
             }
-            let child_sharpness = decay(vertex_sharpness);
-            if child_sharpness > 0.0 {
+            if decay(vertex_sharpness) > 0.0 {
                 continue;
             }
             let to_crease = |t: &mut u8| {
                 *t = (*t & !(tag::SEMI_SHARP | tag::DEP_SHARP)) | tag::CREASE;
             };
-            if !child_semi_edges {
-                for t in &mut self.tags[values.clone()] {
-                    if *t & tag::SEMI_SHARP != 0 {
-                        to_crease(t);
-                    }
-                }
-                continue;
-            }
-            for (j, i) in values.clone().enumerate() {
-                let t = self.tags[i];
-                if t & tag::SEMI_SHARP == 0 || t & tag::DEP_SHARP != 0 {
+            let count = self.count(v);
+            let values: Vec<u32> = (0..count).map(|j| self.value(v, j)).collect();
+            for (j, &c) in values.iter().enumerate() {
+                let t = self.tags[c as usize];
+                if t & tag::SEMI_SHARP == 0 || (child_semi_edges && t & tag::DEP_SHARP != 0) {
                     continue;
                 }
-                let pi = parent.first[v as usize] as usize + j;
                 let mut still = false;
-                span_inner_edges(mesh, parent.crease_ends(pi as u32), |e| {
-                    still |= is_semi_sharp(sharp.child_edge(mesh, e, v));
-                });
+                if child_semi_edges {
+                    let p = parent.value(v, j as u32);
+                    span_inner_edges(mesh, parent.crease_ends(p), |e| {
+                        still |= is_semi_sharp(sharp.child_edge(mesh, e, v));
+                    });
+                }
                 if !still {
-                    to_crease(&mut self.tags[i]);
+                    to_crease(&mut self.tags[c as usize]);
                 }
             }
-            if values.len() == 2 && mode.dependent_sharpness {
-                let [t0, t1] = [self.tags[values.start], self.tags[values.start + 1]];
+            if let ([a, b], true) = (&values[..], child_semi_edges && mode.dependent_sharpness) {
+                let (a, b) = (*a, *b);
+                let [t0, t1] = [self.tags[a as usize], self.tags[b as usize]];
                 if t0 & tag::DEP_SHARP != 0 && t1 & tag::SEMI_SHARP == 0 {
-                    self.tags[values.start] &= !tag::DEP_SHARP;
+                    self.tags[a as usize] &= !tag::DEP_SHARP;
                 } else if t1 & tag::DEP_SHARP != 0 && t0 & tag::SEMI_SHARP == 0 {
-                    self.tags[values.start + 1] &= !tag::DEP_SHARP;
+                    self.tags[b as usize] &= !tag::DEP_SHARP;
                 }
             }
         }
