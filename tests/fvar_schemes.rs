@@ -198,8 +198,14 @@ fn check_charted(
         }
         face_chart.push(c);
     }
-    // The two sides of a cut never share a value index.
+    // Values are numbered as `fvar` numbers them: a value below the vertex count is that
+    // vertex's first value (so where nothing mismatches, the corner values are the indices).
     let uv_indices = uv.indices.as_ref().unwrap();
+    for (k, (&i, &v)) in uv_indices.iter().zip(&out.indices).enumerate() {
+        let own = i as usize >= out.num_vertices() || i == v;
+        assert!(own, "{what}: corner {k} of vertex {v} sees value {i}, another vertex's");
+    }
+    // The two sides of a cut never share a value index.
     let mut index_chart = vec![u32::MAX; uv.len()];
     for (f, range) in faces.iter().enumerate() {
         for k in range.clone() {

@@ -40,8 +40,9 @@
 //! (`boundary: none`) boundary edges and vertices have no faces.
 //!
 //! The child level is not analysed (a primal level after it analyses it afresh): its values are
-//! `[own values in child vertex order | copies]`, its corner values parallel to the child faces'
-//! corners.
+//! `[own values in child vertex order | copies]` (numbered as the rest of `fvar` numbers them: a
+//! vertex's first value as the vertex, so where nothing mismatches the corner values are the
+//! child faces' indices), its corner values parallel to the child faces' corners.
 
 use super::siblings::{Siblings, NONE};
 use super::{FVarChannel, FVarLevel};

@@ -36,9 +36,11 @@
 //! seam edge thus see different values at both ends of the flipped edge between them and at
 //! `u` and `v`: a seam stays a seam, and no child triangle interpolates across charts.
 //!
-//! The child level is not analysed (a primal level after it analyses it afresh): its values are
-//! `[old vertices' values, vertex by vertex | new points in child vertex order | seam
-//! midpoints]`, its corner values parallel to the child triangles' corners.
+//! The child level is not analysed (a primal level after it analyses it afresh). Its values
+//! are numbered as the rest of `fvar` numbers them: an old vertex's first value as the vertex,
+//! a new point as its child vertex, then the further values of old vertices with several, then
+//! the seam midpoints; so where nothing mismatches the corner values are the child triangles'
+//! indices. The corner values are parallel to the child triangles' corners.
 
 use super::siblings::{is_seam, Siblings, NONE};
 use super::{FVarChannel, FVarLevel};
@@ -103,21 +105,34 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
                     && out.iter().all(|&h| !seam[h as usize])
             })
             .collect();
-        // The old vertices' child values: one when the vertex matches, else one per value.
-        let mut old_first = Vec::with_capacity(nv + 1);
-        let mut at = 0u32;
-        for (v, &m) in matching.iter().enumerate() {
-            old_first.push(at);
-            at += if m { 1 } else { siblings.count[v] };
-        }
-        old_first.push(at);
+        // Child values: `[child vertices | further values of old vertices | seam midpoints]`.
+        // An old vertex's first value is numbered as the vertex, a new point as its child
+        // vertex; `further[i]` is the parent value of further value `i`, and `corner_value[h]`
+        // the child value of the value corner `h` sees (each vertex writes its own corners').
         let split = split_half_edges(mesh, self.refine_boundary);
         let (first, num_child_vertices) = first_child_vertices(mesh, &split);
-        let new_base = at as usize;
-        let new_count = num_child_vertices - nv;
+        let mut corner_value = vec![0u32; nh];
+        let mut further: Vec<u32> = Vec::new();
+        for v in 0..nv as u32 {
+            let out = mesh.out_half_edges(v);
+            if matching[v as usize] || siblings.count[v as usize] < 2 {
+                out.iter().for_each(|&h| corner_value[h as usize] = v);
+                continue;
+            }
+            let (start, mut pushed) = ((num_child_vertices + further.len()) as u32, 0);
+            for &h in out {
+                // Ranks are numbered in the order they are first met.
+                let r = siblings.rank[h as usize];
+                if r > pushed {
+                    further.push(cv[h as usize]);
+                    pushed += 1;
+                }
+                corner_value[h as usize] = if r == 0 { v } else { start + r - 1 };
+            }
+        }
         // One value per side of each seam edge.
         let mut mid = vec![NONE; nh];
-        let mut at = (new_base + new_count) as u32;
+        let mut at = (num_child_vertices + further.len()) as u32;
         for (slot, &seam) in mid.iter_mut().zip(&seam) {
             if seam {
                 *slot = at;
@@ -129,22 +144,22 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
         let mut values = vec![0.0f32; total * width];
         let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
         let mut sum = FVarSum::<N>::new(&parent.values, width, cv, &[]);
-        let (old, rest) = values.split_at_mut(new_base * width);
-        let (new, mids) = rest.split_at_mut(new_count * width);
-        for v in 0..nv as u32 {
-            let range =
-                old_first[v as usize] as usize * width..old_first[v as usize + 1] as usize * width;
-            let out = &mut old[range];
-            let corners = mesh.out_half_edges(v);
+        let (old, rest) = values.split_at_mut(nv * width);
+        let (new, rest) = rest.split_at_mut((num_child_vertices - nv) * width);
+        let (further_values, mids) = rest.split_at_mut(further.len() * width);
+        for (v, out) in old.chunks_exact_mut(width).enumerate() {
+            let v = v as u32;
+            // A vertex without faces keeps a value no corner sees.
+            let Some(&corner) = mesh.out_half_edges(v).first() else { continue };
             if matching[v as usize] {
-                let ends = [(v, cv[corners[0] as usize]); 2];
+                let ends = [(v, cv[corner as usize]); 2];
                 sum.eval_into(out, ends, |w| rules.vertex_point(mesh, v, self.refine_boundary, w));
-                continue;
+            } else {
+                out.copy_from_slice(row(cv[corner as usize]));
             }
-            for &h in corners {
-                let r = siblings.rank[h as usize] as usize;
-                out[r * width..(r + 1) * width].copy_from_slice(row(cv[h as usize]));
-            }
+        }
+        for (out, &value) in further_values.chunks_exact_mut(width).zip(&further) {
+            out.copy_from_slice(row(value));
         }
         // Each cell writes its own one or two new points.
         let ends = [(0, 0); 2];
@@ -173,9 +188,10 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
                 }
             }
         }
+        let mid_base = num_child_vertices + further.len();
         for (h, &slot) in mid.iter().enumerate() {
             if slot != NONE {
-                let at = (slot as usize - new_base - new_count) * width;
+                let at = (slot as usize - mid_base) * width;
                 let (a, b) = (row(cv[h]), row(cv[mesh.next_in_cell(h as u32) as usize]));
                 for ((out, &x), &y) in mids[at..at + width].iter_mut().zip(a).zip(b) {
                     *out = 0.5 * (x + y);
@@ -184,7 +200,7 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
         }
 
         // The cell of each new child vertex; each cell writes its own.
-        let mut owner = vec![0u32; new_count];
+        let mut owner = vec![0u32; num_child_vertices - nv];
         for (c, (&b, &slot)) in split.iter().zip(&first).enumerate() {
             let at = slot as usize - nv;
             owner[at] = c as u32;
@@ -200,18 +216,17 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
                 let cell = mesh.cell_of(h);
                 if (x as usize) < nv {
                     if matching[x as usize] {
-                        return old_first[x as usize];
+                        return x;
                     }
                     // The value this triangle's parent face sees at `x`.
                     let corner = mesh
                         .cell_range(cell as usize)
                         .find(|&y| mesh.he_from[y] == x)
                         .map_or(h, |y| y as u32);
-                    return old_first[x as usize] + siblings.rank[corner as usize];
+                    return corner_value[corner as usize];
                 }
-                let i = x as usize - nv;
-                if owner[i] == cell || mid[h as usize] == NONE {
-                    (new_base + i) as u32
+                if owner[x as usize - nv] == cell || mid[h as usize] == NONE {
+                    x
                 } else {
                     mid[h as usize]
                 }
