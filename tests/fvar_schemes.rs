@@ -492,8 +492,15 @@ fn sqrt3_mode_all_differs_from_its_smooth_modes() {
 // ---------------------------------------------------------------------------------------------
 // Closed and open shapes
 
+/// `mesh` with one more vertex, which no face uses.
+fn with_lone_vertex(mut mesh: PolyMesh) -> PolyMesh {
+    mesh.positions.extend_from_slice(&[0.5, 0.5, 3.0]);
+    mesh
+}
+
 fn quad_shapes() -> Vec<(&'static str, PolyMesh)> {
     vec![
+        ("grid-and-lone-vertex", with_lone_vertex(grid(3, 2))),
         ("cube", cube()),
         ("torus", torus(8, 6, 2.0, 0.5)),
         ("prism5", prism(5)),
@@ -507,6 +514,7 @@ fn quad_shapes() -> Vec<(&'static str, PolyMesh)> {
 
 fn triangle_shapes() -> Vec<(&'static str, PolyMesh)> {
     vec![
+        ("grid-triangles-and-lone-vertex", with_lone_vertex(triangulate_quads(&grid(3, 2)))),
         ("icosahedron", icosahedron()),
         ("torus-triangles", torus_triangles(6, 5, 2.0, 0.7)),
         ("cube-triangles", triangulate_quads(&cube())),
