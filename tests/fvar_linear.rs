@@ -56,19 +56,17 @@ fn assert_piecewise_linear(
     // its edges, and so its edge points, its own way).
     assert_eq!(out.face_sizes, linear.face_sizes, "{what}: the linear split has the same faces");
     let indices = uv.indices.as_ref().unwrap();
-    let mut start = 0usize;
-    for (f, &n) in out.face_sizes.iter().enumerate() {
-        for k in start..start + n as usize {
-            let v = linear.indices[k] as usize;
-            let want = chart_map(charts_out[f], &linear.positions[3 * v..3 * v + 3]);
-            let i = indices[k] as usize;
-            let got = [uv.values[2 * i], uv.values[2 * i + 1]];
-            assert!(
-                (got[0] - want[0]).abs() < 1e-5 && (got[1] - want[1]).abs() < 1e-5,
-                "{what}: face {f} corner {k}: {got:?}, expected {want:?}"
-            );
-        }
-        start += n as usize;
+    // The face of each corner.
+    let faces =
+        out.face_sizes.iter().enumerate().flat_map(|(f, &n)| std::iter::repeat_n(f, n as usize));
+    for (k, ((f, &v), &i)) in faces.zip(&linear.indices).zip(indices).enumerate() {
+        let (v, i) = (v as usize, i as usize);
+        let want = chart_map(charts_out[f], &linear.positions[3 * v..3 * v + 3]);
+        let got = [uv.values[2 * i], uv.values[2 * i + 1]];
+        assert!(
+            (got[0] - want[0]).abs() < 1e-5 && (got[1] - want[1]).abs() < 1e-5,
+            "{what}: face {f} corner {k}: {got:?}, expected {want:?}"
+        );
     }
 }
 
