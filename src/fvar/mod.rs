@@ -163,11 +163,7 @@ impl FVarChannel {
         }
         let mut child = self.level.child_topology(mesh, split, sharp, mode);
         let (parent, linear) = (&self.level, linear || mode.linear);
-        // UVs get a sum unrolled for two floats; other widths share one loop.
-        match parent.width {
-            2 => interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp),
-            _ => interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp),
-        }
+        interpolate(mesh, split, rules, parent, &mut child, linear, sharp);
         self.level = child;
     }
 
