@@ -139,7 +139,7 @@ impl Charted {
     }
 
     /// `uv` alone, and `chart` with the same seams but its values numbered the other way round
-    /// (so the two travel as separate channels, `uv` with the two-float sum).
+    /// (so the two travel as separate channels rather than side by side).
     fn apart(&self) -> Vec<Attribute> {
         let mut channels = self.channels();
         let chart = channels.pop().unwrap();
@@ -426,7 +426,7 @@ fn flat_grid_case(triangles: bool, lists: &[&[Scheme]]) {
                 let what = format!("{} {mode} {boundary}", name(schemes));
                 let (out, result) = run(&charted.mesh, &channels, schemes, mode, boundary);
                 let face_chart = check_charted(&out, &result, schemes, &what);
-                // The same seams apart, `uv` summed two floats at a time: the same values.
+                // The same seams, the channels apart: the same values.
                 let (out2, result2) = run(&charted.mesh, &apart, schemes, mode, boundary);
                 assert_eq!(out2.indices, out.indices, "{what}");
                 assert_eq!(result2[0].indices, result[0].indices, "{what}: uv apart");

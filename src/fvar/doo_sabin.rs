@@ -64,11 +64,7 @@ impl FVarChannel {
     ) {
         let parent = std::mem::take(&mut self.level);
         let chaikin = boundary == DualBoundary::Chaikin;
-        // UVs get a sum unrolled for two floats; other widths share one loop.
-        let (values, corner_values) = match parent.width {
-            2 => dual::<R, 2>(mesh, rules, chaikin, &parent, child_corners),
-            _ => dual::<R, 0>(mesh, rules, chaikin, &parent, child_corners),
-        };
+        let (values, corner_values) = dual(mesh, rules, chaikin, &parent, child_corners);
         self.level =
             FVarLevel { width: parent.width, values, corner_values, ..FVarLevel::default() };
         self.analysed = false;
@@ -76,7 +72,7 @@ impl FVarChannel {
 }
 
 /// The child values and corner values of one Doo-Sabin level (module docs).
-fn dual<R: CornerRules, const N: usize>(
+fn dual<R: CornerRules>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     chaikin: bool,
@@ -140,7 +136,7 @@ fn dual<R: CornerRules, const N: usize>(
     let mut values = vec![0.0f32; (own_count + copied.len()) * width];
     let (own, copies) = values.split_at_mut(own_count * width);
     let (corners, chaikin_points) = own.split_at_mut(nh * width);
-    let mut sum = FVarSum::<N>::new(&parent.values, width, cv, &[]);
+    let mut sum = FVarSum::new(&parent.values, width, cv, &[]);
     let ends = [(0, 0); 2];
     for (h, out) in corners.chunks_exact_mut(width).enumerate() {
         sum.eval_into(out, ends, |w| rules.corner_point(mesh, h as u32, w));

@@ -64,11 +64,7 @@ impl FVarChannel {
     ) {
         let parent = std::mem::take(&mut self.level);
         let level = Sqrt3Level { mesh, rules, refine_boundary, mode, parent: &parent };
-        // UVs get a sum unrolled for two floats; other widths share one loop.
-        let (values, corner_values) = match parent.width {
-            2 => level.refine::<2>(child_corners),
-            _ => level.refine::<0>(child_corners),
-        };
+        let (values, corner_values) = level.refine(child_corners);
         self.level =
             FVarLevel { width: parent.width, values, corner_values, ..FVarLevel::default() };
         self.analysed = false;
@@ -84,7 +80,7 @@ struct Sqrt3Level<'a, R> {
 }
 
 impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
-    fn refine<const N: usize>(&self, child_corners: &[u32]) -> (Vec<f32>, Vec<u32>) {
+    fn refine(&self, child_corners: &[u32]) -> (Vec<f32>, Vec<u32>) {
         let (mesh, rules, parent) = (self.mesh, self.rules, self.parent);
         let (width, cv) = (parent.width, &parent.corner_values[..]);
         let (nv, nh) = (mesh.num_vertices(), mesh.num_half_edges());
@@ -143,7 +139,7 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
 
         let mut values = vec![0.0f32; total * width];
         let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
-        let mut sum = FVarSum::<N>::new(&parent.values, width, cv, &[]);
+        let mut sum = FVarSum::new(&parent.values, width, cv, &[]);
         let (old, rest) = values.split_at_mut(nv * width);
         let (new, rest) = rest.split_at_mut((num_child_vertices - nv) * width);
         let (further_values, mids) = rest.split_at_mut(further.len() * width);
