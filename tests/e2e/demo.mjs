@@ -270,7 +270,7 @@ async function run() {
     await page.selectOption('#scheme', 'doo-sabin');
     const dooSabin = await shows({ scheme: 'doo-sabin', level: 1, faces: 26, vertices: 24 }, 'Doo-Sabin on the cube');
     // Doo-Sabin refines the UVs too: its 24 corner points, and 8 more drawn where the faces
-    // across the cross's 7 cut edges take one side's values.
+    // across the cross's cut edges and around its cut vertices take one side's values.
     assert.equal(dooSabin.uv, 'true', 'Doo-Sabin keeps the UVs');
     assert.equal(dooSabin.drawnVertices, '32');
     assert.doesNotMatch(await page.locator('#message').textContent(), /UVs not shown/);
