@@ -151,9 +151,9 @@ fn uv_errors_name_the_file_and_line() {
 }
 
 #[test]
-fn schemes_without_face_varying_rules_drop_the_uvs_with_a_warning() {
-    // Doo-Sabin on the cube: F' = V + E + F = 26 faces, whatever the UVs; the file is written
-    // without vt and stderr says why.
+fn every_scheme_keeps_the_uvs() {
+    // Doo-Sabin on the cube: F' = V + E + F = 26 faces, every corner with a vt; each face's
+    // corner points lie inside its unit square (Doo-Sabin weights are convex within a face).
     let dir = temp_dir("uv-doo-sabin");
     let (input, output) = (dir.join("in.obj"), dir.join("out.obj"));
     std::fs::write(&input, cube_with_square_uvs()).unwrap();
@@ -165,18 +165,24 @@ fn schemes_without_face_varying_rules_drop_the_uvs_with_a_warning() {
         output.to_str().unwrap(),
     ]);
     let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "{stderr}");
-    for part in ["warning", "no texture coordinates", "doo-sabin", "--ignore-uv"] {
-        assert!(stderr.contains(part), "{part:?}: {stderr}");
-    }
+    assert!(run.status.success() && stderr.is_empty(), "{stderr}");
     let out = read_obj_with_tags(&std::fs::read_to_string(&output).unwrap()).unwrap();
     assert_eq!(out.mesh.num_faces(), 26);
-    assert!(out.attributes.is_empty());
-    // Other refusals stay errors: Loop on the cube's quads, with or without UVs.
-    let run = subsurf(&["--scheme", "loop", input.to_str().unwrap()]);
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(!run.status.success() && stderr.contains("triangles only"), "{stderr}");
-    assert!(!stderr.contains("warning"), "{stderr}");
+    let uv = &out.attributes[0];
+    assert_eq!(uv.indices.as_ref().map(Vec::len), Some(out.mesh.indices.len()));
+    assert!(uv.values.iter().all(|&x| (0.0..=1.0).contains(&x)), "{:?}", uv.values);
+    for scheme in ["sqrt3", "quad-triangle", "loop,catmull-clark"] {
+        let run = subsurf(&["--scheme", scheme, input.to_str().unwrap()]);
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        if scheme == "quad-triangle" {
+            assert!(run.status.success(), "{scheme}: {stderr}");
+            assert!(stdout.lines().any(|l| l.starts_with("vt ")), "{scheme}: no vt");
+        } else {
+            // Loop and sqrt3 on the cube's quads are refused as without UVs.
+            assert!(!run.status.success() && stderr.contains("triangles only"), "{stderr}");
+        }
+    }
 }
 
 #[test]

@@ -18,7 +18,7 @@
 //     → { type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, timings }
 //       surface: { positions, normals, uvs, triangles } to shade: with UVs toDrawable's mesh
 //       (vertices split along seams), else the result itself (uvs null); uvNotice: why the UVs
-//       were dropped (a scheme without face-varying rules), or ''.
+//       were dropped (a refusal that only the UVs caused), or ''.
 //     or { type: 'error', id, stage: 'read' | 'predict' | 'subdivide', message, fatal }
 //   { type: 'writeObj', id, mesh }                → { type: 'obj', id, blob } or an error
 import {

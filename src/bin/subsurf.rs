@@ -28,9 +28,7 @@ const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE]
   --fvar-linear MODE where the file's texture coordinates (vt) stay linear: none,
                      corners-only, corners-plus1 (default), corners-plus2, boundaries, all
                      (OpenSubdiv's FVarLinearInterpolation)
-  --ignore-uv        ignore the file's texture coordinates; the output has none (schemes
-                     without face-varying rules, doo-sabin, sqrt3 and quad-triangle, drop
-                     them with a warning)
+  --ignore-uv        ignore the file's texture coordinates; the output has none
   --max-faces N      refuse when the result would have more faces (default 16777216)
   --max-bytes N      refuse when the result's arrays would take more bytes (default 1073741824)
   --stats            print counts and timings to stderr
@@ -166,21 +164,7 @@ fn run(args: Args) -> Result<(), String> {
         subsurf::scheme::subdivide_mesh_borrowed_with(&mesh, channels, &options, &tags)
             .map(|refined| refined.into_parts())
     };
-    // A scheme without face-varying rules (doo-sabin, sqrt3, quad-triangle) refuses the UVs; the
-    // surface is still what the user asked for, so it is written without them, with a warning.
-    // Any other refusal is the answer of the call with the UVs.
-    let (output, channels) = match refine(&attributes) {
-        Err(refused) if !attributes.is_empty() => match refine(&[]) {
-            Ok(parts) => {
-                eprintln!(
-                    "subsurf: warning: the output has no texture coordinates: {refused} (--ignore-uv skips them without this warning)"
-                );
-                parts
-            }
-            Err(_) => return Err(refused.to_string()),
-        },
-        result => result.map_err(|e| e.to_string())?,
-    };
+    let (output, channels) = refine(&attributes).map_err(|e| e.to_string())?;
     let refine_time = t.elapsed();
 
     let t = Instant::now();
