@@ -29,3 +29,22 @@ export function torus(rings, segments, major, minor, triangles) {
 // The two benchmark meshes: 1 M quads (level 1) and 100 k triangles (levels 1-3).
 export const quadTorus = () => torus(1000, 1000, 1.0, 0.25, false);
 export const triangleTorus = () => torus(250, 200, 1.0, 0.25, true);
+
+// The (u, v) grid of torus(rings, segments, ...) as a face-varying channel: one value per grid
+// point of (rings + 1) x (segments + 1), so the two closing loops are seams.
+export function torusUvs(rings, segments) {
+  const array = new Float32Array(2 * (rings + 1) * (segments + 1));
+  for (let i = 0; i <= rings; i++) {
+    for (let j = 0; j <= segments; j++) array.set([i / rings, j / segments], 2 * (i * (segments + 1) + j));
+  }
+  const value = (i, j) => i * (segments + 1) + j;
+  const indices = new Uint32Array(4 * rings * segments);
+  let k = 0;
+  for (let i = 0; i < rings; i++) {
+    for (let j = 0; j < segments; j++) {
+      indices.set([value(i, j), value(i + 1, j), value(i + 1, j + 1), value(i, j + 1)], k);
+      k += 4;
+    }
+  }
+  return { array, itemSize: 2, indices };
+}

@@ -11,6 +11,13 @@ export type SchemeName =
 /** Names accepted by `SubdivideOptions.boundary`; `boundaryRules()` lists them at run time. */
 export type BoundaryRule = 'edge-and-corner' | 'edge-only' | 'fixed' | 'average' | 'none';
 
+/**
+ * Names accepted by `SubdivideOptions.fvarLinear`, from smoothest to most linear (OpenSubdiv's
+ * `FVarLinearInterpolation`); `fvarLinearModes()` lists them at run time.
+ */
+export type FVarLinearMode =
+  'none' | 'corners-only' | 'corners-plus1' | 'corners-plus2' | 'boundaries' | 'all';
+
 /** A polygon mesh as flat typed arrays. The arrays are only read, never modified. */
 export interface SubdivideMesh {
   /** x, y, z of each vertex. */
@@ -26,18 +33,22 @@ export interface SubdivideMesh {
    * options: `subdivide(mesh, { ...mesh.tags, levels: 2 })`.
    */
   tags?: ObjTags;
+  /** Ignored, so that a `toDrawable` result can be passed as it is (to `vertexNormals`, ...). */
+  origins?: Uint32Array;
   /**
-   * Data besides positions, by name (colours, skin weights, morph targets): each channel is
-   * refined with the same weights as the positions and comes back in the result's
-   * `attributes` under the same name.
+   * Data besides positions, by name (colours, skin weights, morph targets, UVs): each channel is
+   * refined with the same weights as the positions (face-varying ones by OpenSubdiv's
+   * face-varying rules, see `fvarLinear`) and comes back in the result's `attributes` under the
+   * same name.
    */
   attributes?: Record<string, AttributeChannel>;
 }
 
 /**
- * One channel: `itemSize` floats per vertex (1 to 16), in vertex order. (`indices`, one value
- * index per face corner for face-varying data such as UVs split at seams, is checked but refused
- * by this version.)
+ * One channel of `itemSize` floats (1 to 16) per value. Without `indices` it is vertex-varying:
+ * one value per vertex, in vertex order. With `indices` it is face-varying (UVs split at seams):
+ * `indices[k]` is the value of face corner k, parallel to the mesh's `indices`, so a vertex may
+ * have a different value in each of its faces.
  */
 export interface AttributeChannel {
   array: Float32Array;
@@ -67,6 +78,12 @@ export interface SubdivideOptions {
   creaseMethod?: 'uniform' | 'chaikin';
   /** Catmull-Clark: OpenSubdiv's smooth-triangle rule. Default false. */
   smoothTriangles?: boolean;
+  /**
+   * Where face-varying channels (UVs) are interpolated linearly instead of smoothly: 'none'
+   * (smooth everywhere), 'corners-only', 'corners-plus1', 'corners-plus2', 'boundaries' (along
+   * boundaries and seams) or 'all' (everywhere, as bilinear). Default 'corners-plus1'.
+   */
+  fvarLinear?: FVarLinearMode;
 }
 
 /** A polygon mesh with every field present, as `shape` returns it. */
@@ -96,9 +113,14 @@ export interface ObjTags {
   smoothTriangles?: true;
 }
 
-/** What `readObj` returns: the polygons of an OBJ file and its tags. */
+/** What `readObj` returns: the polygons of an OBJ file, its tags and its texture coordinates. */
 export interface ObjMesh extends PolygonMesh {
   tags: ObjTags;
+  /**
+   * The file's `vt` lines (u, v; a third component is dropped) and its corners' `vt` indices, as
+   * the face-varying channel `uv`; absent when the faces give no `vt` indices.
+   */
+  attributes?: { uv: AttributeChannel };
 }
 
 /**
@@ -108,6 +130,10 @@ export interface ObjMesh extends PolygonMesh {
 export interface SubdivideResult extends PolygonMesh {
   /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */
   triangles: Uint32Array;
-  /** The refined channels of `mesh.attributes`, by name; present when the mesh had some. */
+  /**
+   * The refined channels of `mesh.attributes`, by name; present when the mesh had some. A
+   * face-varying channel's `indices` are parallel to this result's `indices`; `toDrawable`
+   * turns the result into one index buffer for WebGL.
+   */
   attributes?: Record<string, AttributeChannel>;
 }

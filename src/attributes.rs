@@ -23,10 +23,14 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::fvar::FVarChannel;
 use crate::primvar::Rows;
 
 /// The most floats one value of a channel may have.
 pub const MAX_ITEM_SIZE: usize = 16;
+
+// Face-varying channels are summed in rows of at most this width.
+const _: () = assert!(MAX_ITEM_SIZE <= crate::primvar::FVAR_MAX_WIDTH);
 
 /// One named channel of `item_size` floats per value.
 #[derive(Clone, Debug, PartialEq)]
@@ -196,4 +200,97 @@ pub fn unpack(rows: Rows, layout: &RowLayout) -> Vec<Attribute> {
             Attribute::vertex(name.clone(), *size, values)
         })
         .collect()
+}
+
+/// Where each face-varying channel sits: channels with equal indices travel as one
+/// [`FVarChannel`], side by side. Per group, `(attribute index, name, item size, first column)`
+/// of each member.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FVarLayout {
+    pub groups: Vec<Vec<(usize, String, usize, usize)>>,
+}
+
+/// The face-varying channels of `attributes`, those with equal indices side by side up to
+/// [`MAX_ITEM_SIZE`] floats (their rows up to the shortest channel's count, which every index
+/// is below).
+pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLayout) {
+    let mut layout = FVarLayout::default();
+    let mut group_indices: Vec<&[u32]> = Vec::new();
+    for (i, a) in attributes.iter().enumerate() {
+        let Some(indices) = &a.indices else { continue };
+        let width = |g: usize| layout.groups[g].iter().map(|m| m.2).sum::<usize>();
+        let fits = |g: usize| width(g) + a.item_size <= MAX_ITEM_SIZE;
+        match (0..group_indices.len()).find(|&g| group_indices[g] == &indices[..] && fits(g)) {
+            Some(g) => {
+                let column = layout.groups[g].iter().map(|m| m.2).sum();
+                layout.groups[g].push((i, a.name.clone(), a.item_size, column));
+            }
+            None => {
+                group_indices.push(indices);
+                layout.groups.push(vec![(i, a.name.clone(), a.item_size, 0)]);
+            }
+        }
+    }
+    let channels = layout
+        .groups
+        .iter()
+        .zip(&group_indices)
+        .map(|(members, indices)| {
+            let width: usize = members.iter().map(|m| m.2).sum();
+            let count = members.iter().map(|m| attributes[m.0].len()).min().unwrap_or(0);
+            let mut values = vec![0.0f32; count * width];
+            for (i, _, size, column) in members {
+                let source = &attributes[*i].values;
+                for (row, value) in values.chunks_exact_mut(width).zip(source.chunks_exact(*size)) {
+                    row[*column..column + size].copy_from_slice(value);
+                }
+            }
+            FVarChannel::new(width, values, indices.to_vec())
+        })
+        .collect();
+    (channels, layout)
+}
+
+/// Every channel back out, in the order of the `count` attributes given: the vertex-varying
+/// ones from `rows` ([`unpack`]), the face-varying ones from `channels`, with the last level's
+/// corner values as their indices.
+pub fn unpack_all(
+    rows: Rows,
+    layout: &RowLayout,
+    channels: Vec<FVarChannel>,
+    fvar_layout: &FVarLayout,
+    count: usize,
+) -> Vec<Attribute> {
+    let mut slots: Vec<Option<Attribute>> = vec![None; count];
+    for (a, (i, ..)) in unpack(rows, layout).into_iter().zip(&layout.channels) {
+        slots[*i] = Some(a);
+    }
+    for (channel, members) in channels.into_iter().zip(&fvar_layout.groups) {
+        let mut level = channel.level;
+        let width = level.width;
+        if let [(i, name, size, _)] = &members[..] {
+            // A lone channel takes the level's arrays as they are.
+            let (values, indices) = (level.values, level.corner_values);
+            slots[*i] = Some(Attribute::face_varying(name.clone(), *size, values, indices));
+            continue;
+        }
+        for (k, (i, name, size, column)) in members.iter().enumerate() {
+            let values = if *size == width {
+                level.values.clone()
+            } else {
+                let mut values = Vec::with_capacity(level.values.len() / width.max(1) * size);
+                for row in level.values.chunks_exact(width.max(1)) {
+                    values.extend_from_slice(&row[*column..column + size]);
+                }
+                values
+            };
+            let indices = if k + 1 == members.len() {
+                std::mem::take(&mut level.corner_values)
+            } else {
+                level.corner_values.clone()
+            };
+            slots[*i] = Some(Attribute::face_varying(name.clone(), *size, values, indices));
+        }
+    }
+    slots.into_iter().flatten().collect()
 }

@@ -17,11 +17,14 @@
 //!
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
 //! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
-//! [`attributes`] (data besides positions), [`scheme`] (the driver), [`io`] (OBJ), and the wasm
-//! bindings.
+//! [`fvar`] (face-varying topology and values), [`attributes`] (data besides positions),
+//! [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
+//! and the wasm bindings.
 
 pub mod attributes;
+pub mod drawable;
 pub mod error;
+pub mod fvar;
 pub mod io;
 pub mod mesh;
 pub mod options;

@@ -100,7 +100,7 @@ impl<'a> RowSum<'a> {
     /// `sum += weight * row`. The common widths (a scalar, UVs, a colour, four skin weights)
     /// get unrolled bodies: a loop over three floats cost more than the sums themselves.
     #[inline(always)]
-    fn add(sum: &mut [f32], row: &[f32], weight: f32) {
+    pub(crate) fn add(sum: &mut [f32], row: &[f32], weight: f32) {
         match sum.len() {
             1 => add_n::<1>(sum, row, weight),
             2 => add_n::<2>(sum, row, weight),
@@ -155,6 +155,103 @@ impl Weights for RowSum<'_> {
     }
 
     #[inline]
+    fn end_group(&mut self, outer: f32) {
+        self.scale = outer;
+    }
+}
+
+/// The widest row a [`FVarSum`] sums (face-varying channels are grouped up to it; no channel
+/// is wider, see `attributes::MAX_ITEM_SIZE`).
+pub const FVAR_MAX_WIDTH: usize = 16;
+
+/// Sums weighted rows of a face-varying channel (`width` floats per value, at most
+/// [`FVAR_MAX_WIDTH`], summed in a fixed array: no allocation per value) for one new value whose vertex topology matches the
+/// surface's: corners resolve through `corner_values` (the value each parent face corner
+/// sees), face points are the child level's `face_values` by cell, and a rule's `vertex(v)` is
+/// the value `ends` gives for `v` (the moving vertex's value, or an edge's end values as one of
+/// its faces sees them).
+pub struct FVarSum<'a> {
+    values: &'a [f32],
+    width: usize,
+    corner_values: &'a [u32],
+    face_values: &'a [f32],
+    ends: [(u32, u32); 2],
+    sum: [f32; FVAR_MAX_WIDTH],
+    scale: f32,
+}
+
+impl<'a> FVarSum<'a> {
+    pub fn new(
+        values: &'a [f32],
+        width: usize,
+        corner_values: &'a [u32],
+        face_values: &'a [f32],
+    ) -> Self {
+        let width = width.min(FVAR_MAX_WIDTH);
+        let sum = [0.0; FVAR_MAX_WIDTH];
+        FVarSum { values, width, corner_values, face_values, ends: [(0, 0); 2], sum, scale: 1.0 }
+    }
+
+    #[inline(always)]
+    fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Writes into `out` the value whose weights `rule` gives, with `ends` resolving
+    /// [`Weights::vertex`].
+    #[inline(always)]
+    pub fn eval_into(
+        &mut self,
+        out: &mut [f32],
+        ends: [(u32, u32); 2],
+        rule: impl FnOnce(&mut Self),
+    ) {
+        self.ends = ends;
+        let width = self.width();
+        self.sum[..width].fill(0.0);
+        rule(self);
+        out[..width].copy_from_slice(&self.sum[..width]);
+    }
+
+    #[inline(always)]
+    fn add_row(&mut self, source: &[f32], index: usize, weight: f32) {
+        let width = self.width();
+        let row = &source[index * width..(index + 1) * width];
+        let weight = weight * self.scale;
+        for (s, &x) in self.sum[..width].iter_mut().zip(row) {
+            *s += x * weight;
+        }
+    }
+}
+
+impl Weights for FVarSum<'_> {
+    #[inline(always)]
+    fn vertex(&mut self, v: u32, weight: f32) {
+        let value = if self.ends[0].0 == v { self.ends[0].1 } else { self.ends[1].1 };
+        self.add_row(self.values, value as usize, weight);
+    }
+
+    #[inline(always)]
+    fn corner(&mut self, h: u32, weight: f32) {
+        self.add_row(self.values, self.corner_values[h as usize] as usize, weight);
+    }
+
+    #[inline(always)]
+    fn face_point(&mut self, c: u32, weight: f32) {
+        self.add_row(self.face_values, c as usize, weight);
+    }
+
+    /// The scale outside the group.
+    type Group = f32;
+
+    #[inline(always)]
+    fn begin_group(&mut self, scale: f32) -> f32 {
+        let outer = self.scale;
+        self.scale = outer * scale;
+        outer
+    }
+
+    #[inline(always)]
     fn end_group(&mut self, outer: f32) {
         self.scale = outer;
     }

@@ -4,6 +4,7 @@
 
 use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
+use crate::fvar::{FVarChannel, LevelSharpness, MixedRules, PrimalRules, Split};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 pub use crate::options::{
     Boundary, FVarLinear, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
@@ -112,7 +113,7 @@ pub fn subdivide_mesh_refined(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_levels(Cow::Owned(base), options, tags, Rows::default(), no_attributes)
+    refine_levels(Cow::Owned(base), options, tags, Rows::default(), Vec::new(), no_attributes)
 }
 
 /// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
@@ -123,7 +124,7 @@ pub fn subdivide_mesh_borrowed<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_levels(Cow::Borrowed(base), options, tags, Rows::default(), no_attributes)
+    refine_levels(Cow::Borrowed(base), options, tags, Rows::default(), Vec::new(), no_attributes)
 }
 
 /// Subdivides `mesh` with its attribute channels (see [`Attribute`]): vertex-varying channels
@@ -171,20 +172,13 @@ pub fn subdivide_mesh_borrowed_with<'a>(
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
 /// call shares one instance of the level loop.
-fn no_attributes(_: Rows) -> Vec<Attribute> {
+fn no_attributes(_: Rows, _: Vec<FVarChannel>) -> Vec<Attribute> {
     Vec::new()
 }
 
 /// Checks `attributes` against `mesh` as the `*_with` functions do before any work.
 pub fn check_attributes(attributes: &[Attribute], mesh: &HalfEdgeMesh) -> Result<()> {
-    attributes::validate(attributes, mesh.num_vertices(), mesh.num_half_edges())?;
-    if let Some(a) = attributes.iter().find(|a| a.is_face_varying()) {
-        return Err(Error::Unsupported(format!(
-            "attribute '{}': face-varying channels (with indices) are not refined by this version; give one value per vertex instead",
-            a.name
-        )));
-    }
-    Ok(())
+    attributes::validate(attributes, mesh.num_vertices(), mesh.num_half_edges())
 }
 
 fn refine_with_attributes<'a>(
@@ -197,20 +191,26 @@ fn refine_with_attributes<'a>(
     if attributes.is_empty() {
         // The positions-only instance of the level loop, as the plain calls use: in the one
         // that carries rows, the wasm build refined positions 27 % slower (other inlining).
-        return refine_levels(base, options, tags, Rows::default(), no_attributes);
+        return refine_levels(base, options, tags, Rows::default(), Vec::new(), no_attributes);
     }
     let (rows, layout) = attributes::pack(attributes, base.num_vertices());
-    refine_levels(base, options, tags, rows, |rows| attributes::unpack(rows, &layout))
+    let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
+    let count = attributes.len();
+    refine_levels(base, options, tags, rows, fvar, |rows, fvar| {
+        attributes::unpack_all(rows, &layout, fvar, &fvar_layout, count)
+    })
 }
 
-/// Runs every level of `options` on `base`, with the vertex-varying `rows` alongside; `finish`
-/// turns the last level's rows back into attribute channels.
+/// Runs every level of `options` on `base`, with the vertex-varying `rows` and the face-varying
+/// channels `fvar` alongside; `finish` turns the last level's rows and channels back into
+/// attribute channels.
 fn refine_levels<'a>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
     mut rows: Rows,
-    finish: impl FnOnce(Rows) -> Vec<Attribute>,
+    mut fvar: Vec<FVarChannel>,
+    finish: impl FnOnce(Rows, Vec<FVarChannel>) -> Vec<Attribute>,
 ) -> Result<Refined<'a>> {
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
@@ -224,25 +224,34 @@ fn refine_levels<'a>(
         }
     }
     let boundary = options.boundary;
+    let fvar_mode = options.fvar_linear;
     let mut mesh = base;
     if options.schemes.is_empty() {
         if tags.holes.is_empty() {
-            return Ok(Refined::poly(mesh.to_poly(), finish(rows)));
+            return Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)));
         }
         let level_tags = LevelTags::base_with_edges(&mesh, tags, &crease_edges, false);
         let mut poly = mesh.to_poly();
         let sizes = std::mem::take(&mut poly.face_sizes);
         let indices = std::mem::take(&mut poly.indices);
         let (mut start, mut kept) = (0usize, Vec::with_capacity(indices.len()));
+        let mut kept_corners = vec![Vec::with_capacity(indices.len()); fvar.len()];
         for (f, &n) in sizes.iter().enumerate() {
+            let corners = start..start + n as usize;
             if !level_tags.is_hole(f as u32) {
-                kept.extend_from_slice(&indices[start..start + n as usize]);
+                kept.extend_from_slice(&indices[corners.clone()]);
+                for (out, channel) in kept_corners.iter_mut().zip(&fvar) {
+                    out.extend_from_slice(&channel.level.corner_values[corners.clone()]);
+                }
                 poly.face_sizes.push(n);
             }
-            start += n as usize;
+            start = corners.end;
         }
         poly.indices = kept;
-        return Ok(Refined::poly(poly, finish(rows)));
+        for (channel, corners) in fvar.iter_mut().zip(kept_corners) {
+            channel.level.corner_values = corners;
+        }
+        return Ok(Refined::poly(poly, finish(rows, fvar)));
     }
     let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
@@ -297,29 +306,38 @@ fn refine_levels<'a>(
             }
             level_tags = None;
         }
+        let sharp = LevelSharpness {
+            tags: level_tags.as_ref(),
+            sharp_corners: boundary == Boundary::EdgeAndCorner,
+        };
+        // After the mixed split, the child mesh is built from its faces, which numbers edges
+        // its own way: the face-varying edge tags follow (parent vertices, first edge point).
+        let mut renumber = None;
+        let mut primal = Primal { rows: &rows, fvar: &mut fvar, sharp, mode: fvar_mode, last };
         let (child, next_tags) = match (scheme, &level_tags) {
             (Scheme::CatmullClark, Some(t)) => {
                 let rules = CreasedCatmullClark { boundary, tags: t };
-                primal_level::<Pqq, _>(mesh, &rules, Some(t), &rows, last)
+                primal.level::<Pqq, _>(mesh, &rules, false)
             }
             (Scheme::CatmullClark, None) => {
-                primal_level::<Pqq, _>(mesh, &CatmullClark { boundary }, None, &rows, last)
+                primal.level::<Pqq, _>(mesh, &CatmullClark { boundary }, false)
             }
-            (Scheme::Bilinear, t) => {
-                primal_level::<Pqq, _>(mesh, &Bilinear, t.as_ref(), &rows, last)
-            }
+            (Scheme::Bilinear, _) => primal.level::<Pqq, _>(mesh, &Bilinear, true),
             (Scheme::Loop, Some(t)) => {
                 let rules = CreasedLoop { boundary, tags: t };
-                primal_level::<Ptq, _>(mesh, &rules, Some(t), &rows, last)
+                primal.level::<Ptq, _>(mesh, &rules, false)
             }
-            (Scheme::Loop, None) => {
-                primal_level::<Ptq, _>(mesh, &Loop { boundary }, None, &rows, last)
-            }
-            (Scheme::Midpoint, t) => {
-                primal_level::<Ptq, _>(mesh, &Midpoint, t.as_ref(), &rows, last)
-            }
+            (Scheme::Loop, None) => primal.level::<Ptq, _>(mesh, &Loop { boundary }, false),
+            (Scheme::Midpoint, _) => primal.level::<Ptq, _>(mesh, &Midpoint, true),
             (Scheme::QuadTriangle, _) => {
-                let (poly, rows) = quad_tri::refine_with(&mesh, &QuadTriangle { boundary }, &rows);
+                let rules = QuadTriangle { boundary };
+                for channel in primal.fvar.iter_mut() {
+                    let rules = MixedRules(&rules);
+                    channel.refine(&mesh, Split::Mixed, &rules, false, &sharp, fvar_mode);
+                }
+                let (_, count) = Split::Mixed.face_points(&mesh);
+                renumber = Some((mesh.num_vertices(), mesh.num_vertices() + count));
+                let (poly, rows) = quad_tri::refine_with(&mesh, &rules, &rows);
                 (Level::Poly(poly, rows), None)
             }
             (Scheme::DooSabin, _) => {
@@ -330,21 +348,34 @@ fn refine_levels<'a>(
                 };
                 if last || mesh.num_cells() == 0 {
                     let (poly, rows) = dqq::refine_with(&mesh, &DooSabin, mode, &rows);
+                    for channel in fvar.iter_mut() {
+                        channel.refine_doo_sabin(&mesh, &DooSabin, mode, &poly.indices);
+                    }
                     (Level::Poly(poly, rows), None)
                 } else {
                     let (child, rows) = dqq::child_mesh_with(&mesh, &DooSabin, mode, &rows)?;
+                    for channel in fvar.iter_mut() {
+                        channel.refine_doo_sabin(&mesh, &DooSabin, mode, &child.he_from);
+                    }
                     (Level::Mesh(child, rows), None)
                 }
             }
             (Scheme::Sqrt3, _) => {
                 let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
                 let rules = Sqrt3 { boundary };
+                let fvar_level = |fvar: &mut Vec<FVarChannel>, corners: &[u32]| {
+                    for channel in fvar.iter_mut() {
+                        channel.refine_sqrt3(&mesh, &rules, refine_boundary, fvar_mode, corners);
+                    }
+                };
                 if last {
                     let (poly, rows) = sqrt3::refine_with(&mesh, &rules, refine_boundary, &rows);
+                    fvar_level(&mut fvar, &poly.indices);
                     (Level::Poly(poly, rows), None)
                 } else {
                     let (child, rows) =
                         sqrt3::child_mesh_with(&mesh, &rules, refine_boundary, &rows)?;
+                    fvar_level(&mut fvar, &child.he_from);
                     (Level::Mesh(child, rows), None)
                 }
             }
@@ -353,22 +384,28 @@ fn refine_levels<'a>(
         mesh = match child {
             // A mesh without vertices (Doo-Sabin of a mesh without faces) stays empty.
             Level::Poly(poly, rows) if last || poly.positions.is_empty() => {
-                return Ok(Refined::poly(poly, finish(rows)));
+                return Ok(Refined::poly(poly, finish(rows, fvar)));
             }
             Level::Poly(poly, child_rows) => {
                 rows = child_rows;
-                Cow::Owned(HalfEdgeMesh::from_poly(&poly)?)
+                let child = HalfEdgeMesh::from_poly(&poly)?;
+                if let Some((parent_vertices, edge_base)) = renumber {
+                    for channel in fvar.iter_mut().filter(|c| c.analysed) {
+                        channel.level.renumber_edge_tags(&child, parent_vertices, edge_base);
+                    }
+                }
+                Cow::Owned(child)
             }
             Level::Mesh(mesh, child_rows) => {
                 rows = child_rows;
                 Cow::Owned(mesh)
             }
             Level::Quads { positions, parent, rows } => {
-                return Ok(Refined::quads(positions, parent, finish(rows)));
+                return Ok(Refined::quads(positions, parent, finish(rows, fvar)));
             }
         };
     }
-    Ok(Refined::poly(mesh.to_poly(), finish(rows)))
+    Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)))
 }
 
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
@@ -380,40 +417,63 @@ enum Level<'a> {
     Mesh(HalfEdgeMesh, Rows),
 }
 
-/// One level of a primal split `S` with `rules`, with `tags` when the level follows tags: the
-/// last level leaves out the children of holes (and keeps the faces implicit where it can);
-/// other levels return the child mesh and, with tags, the child level's tags.
-fn primal_level<'a, S: PrimalSplit<R>, R>(
-    mesh: Cow<'a, HalfEdgeMesh>,
-    rules: &R,
-    tags: Option<&LevelTags>,
-    rows: &Rows,
+/// What one level of a primal split carries besides the mesh: the vertex-varying rows, the
+/// face-varying channels (refined in place), the level's sharpness, and whether it is the last.
+struct Primal<'r, 's> {
+    rows: &'r Rows,
+    fvar: &'r mut Vec<FVarChannel>,
+    sharp: LevelSharpness<'s>,
+    mode: crate::options::FVarLinear,
     last: bool,
-) -> (Level<'a>, Option<LevelTags>) {
-    let rows = if rows.is_empty() { Rows::default() } else { S::points(&mesh, rules, rows) };
-    let positions = S::points(&mesh, rules, &mesh.positions);
-    if !last {
-        let child = S::child_mesh(&mesh, positions);
-        let child_tags = tags.map(|t| S::child_tags(&mesh, &child, t));
-        return (Level::Mesh(child, rows), child_tags);
-    }
-    let positions = positions.into_flattened();
-    let holes = tags.filter(|t| t.has_holes());
-    if S::IMPLICIT_FACES && holes.is_none() {
-        return (Level::Quads { positions, parent: mesh, rows }, None);
-    }
-    let mut indices = S::child_face_indices(&mesh);
-    let size = S::FACE_SIZE;
-    if let Some(tags) = holes {
-        let mut kept = 0usize;
-        for f in 0..indices.len() / size {
-            if !tags.is_hole(S::parent_cell(&mesh, f)) {
-                indices.copy_within(f * size..(f + 1) * size, kept * size);
-                kept += 1;
-            }
+}
+
+impl Primal<'_, '_> {
+    /// One level of a primal split `S` with `rules` (`linear` for bilinear and midpoint, whose
+    /// face-varying values are linear too), with the level's tags when it follows tags: the
+    /// last level leaves out the children of holes (and keeps the faces implicit where it can);
+    /// other levels return the child mesh and, with tags, the child level's tags.
+    fn level<'a, S: PrimalSplit<R>, R>(
+        &mut self,
+        mesh: Cow<'a, HalfEdgeMesh>,
+        rules: &R,
+        linear: bool,
+    ) -> (Level<'a>, Option<LevelTags>) {
+        let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
+        for channel in self.fvar.iter_mut() {
+            let rules = PrimalRules::<S, R>::new(rules);
+            channel.refine(&mesh, split, &rules, linear, &self.sharp, self.mode);
         }
-        indices.truncate(kept * size);
+        let tags = self.sharp.tags;
+        let rows = self.rows;
+        let rows = if rows.is_empty() { Rows::default() } else { S::points(&mesh, rules, rows) };
+        let positions = S::points(&mesh, rules, &mesh.positions);
+        if !self.last {
+            let child = S::child_mesh(&mesh, positions);
+            let child_tags = tags.map(|t| S::child_tags(&mesh, &child, t));
+            return (Level::Mesh(child, rows), child_tags);
+        }
+        let positions = positions.into_flattened();
+        let holes = tags.filter(|t| t.has_holes());
+        if S::IMPLICIT_FACES && holes.is_none() {
+            return (Level::Quads { positions, parent: mesh, rows }, None);
+        }
+        let mut indices = S::child_face_indices(&mesh);
+        let size = S::FACE_SIZE;
+        if let Some(tags) = holes {
+            let keep = |f: usize| !tags.is_hole(S::parent_cell(&mesh, f));
+            for channel in self.fvar.iter_mut() {
+                channel.keep_faces(size, keep);
+            }
+            let mut kept = 0usize;
+            for f in 0..indices.len() / size {
+                if keep(f) {
+                    indices.copy_within(f * size..(f + 1) * size, kept * size);
+                    kept += 1;
+                }
+            }
+            indices.truncate(kept * size);
+        }
+        let face_sizes = vec![size as u32; indices.len() / size];
+        (Level::Poly(PolyMesh { positions, indices, face_sizes }, rows), None)
     }
-    let face_sizes = vec![size as u32; indices.len() / size];
-    (Level::Poly(PolyMesh { positions, indices, face_sizes }, rows), None)
 }

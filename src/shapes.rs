@@ -4,7 +4,7 @@
 //! from outside). Sizes are clamped to sensible minimums so that no argument can fail.
 
 use crate::mesh::PolyMesh;
-use std::f32::consts::TAU;
+use std::f32::consts::{PI, TAU};
 
 /// The cube of seed `003`: corners at ±1, six quads.
 pub fn cube() -> PolyMesh {
@@ -293,34 +293,174 @@ pub fn house() -> PolyMesh {
 }
 
 // ---------------------------------------------------------------------------------------------
-// What a viewer needs besides the faces: smooth normals and the edges
+// UV layouts of the demo shapes
 
-/// Checks that `mesh`'s arrays fit together (whole vertices, face sizes summing to the index
-/// count, every index naming a vertex) without building the half-edge mesh, so that the
-/// display helpers below cost one pass over the faces.
-fn check_flat_arrays(mesh: &PolyMesh) -> crate::Result<()> {
-    if !mesh.positions.len().is_multiple_of(3) {
-        return Err(crate::Error::InvalidMesh(format!(
-            "positions has {} entries, which is not a multiple of 3 (x, y, z per vertex)",
-            mesh.positions.len()
-        )));
-    }
-    let total: u64 = mesh.face_sizes.iter().map(|&n| n as u64).sum();
-    if total != mesh.indices.len() as u64 {
-        return Err(crate::Error::InvalidMesh(format!(
-            "faceSizes add up to {total} but indices has {} entries; they must be equal",
-            mesh.indices.len()
-        )));
-    }
-    let vertices = mesh.num_vertices();
-    if let Some(k) = mesh.indices.iter().position(|&i| i as usize >= vertices) {
-        return Err(crate::Error::InvalidMesh(format!(
-            "indices[{k}] refers to vertex {}, but there are only {vertices} vertices",
-            mesh.indices[k]
-        )));
-    }
-    Ok(())
+/// The texture coordinates of [`demo_shape`]`(name)`: a face-varying channel named `uv` (2
+/// floats, one index per face corner), laid out as a modeller would, with seams where the
+/// layout cuts the surface open. Counter-clockwise faces stay counter-clockwise in UV space.
+///
+/// - cube: unfolded into a cross (14 values, square cells of 1/4);
+/// - torus: the (ring, tube) parameter grid over [0, 1]², cut along one ring and one tube
+///   circle;
+/// - sheet with holes: the planar projection of x, y onto [0, 1]² (no seams);
+/// - icosahedron, dodecahedron: latitude and longitude about the axis through vertex 0 (u over
+///   [0, 2], v over [0, 1]), cut along one meridian; a pole's corners take the mean longitude of
+///   their face;
+/// - house: box mapping, each face projected along the axis its normal points most along.
+pub fn demo_shape_uv(name: &str) -> Option<crate::attributes::Attribute> {
+    let mesh = demo_shape(name)?;
+    let per_corner: Vec<[f32; 2]> = match name {
+        "cube" => cube_cross_uv(),
+        "torus" => {
+            let (rings, segments) = (24u32, 12u32);
+            let mut uv = Vec::with_capacity(mesh.indices.len());
+            for i in 0..rings {
+                for j in 0..segments {
+                    let at = |i: u32, j: u32| [i as f32 / rings as f32, j as f32 / segments as f32];
+                    uv.extend([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+            uv
+        }
+        "sheet-with-holes" => mesh
+            .indices
+            .iter()
+            .map(|&v| {
+                let p = &mesh.positions[3 * v as usize..];
+                [(p[0] + 1.5) / 3.0, (p[1] + 1.5) / 3.0]
+            })
+            .collect(),
+        "icosahedron" | "dodecahedron" => spherical_uv(&mesh, 0),
+        _ => box_uv(&mesh),
+    };
+    Some(merge_corner_values(&mesh, &per_corner))
 }
+
+/// The cube of [`cube`] unfolded into a cross: the four faces around z in a row (a seam closes
+/// the row), z+ above and z− below the first of them.
+fn cube_cross_uv() -> Vec<[f32; 2]> {
+    let at = |column: u32, row: u32| [column as f32 / 4.0, (2 * row + 1) as f32 / 8.0];
+    let mut uv = Vec::with_capacity(24);
+    // Faces 0..4 ([0,4,5,1], [4,6,7,5], [6,2,3,7], [2,0,1,3]) start at z− and run around z.
+    for k in 0..4 {
+        uv.extend([at(k, 1), at(k + 1, 1), at(k + 1, 2), at(k, 2)]);
+    }
+    uv.extend([at(0, 2), at(1, 2), at(1, 3), at(0, 3)]); // z+: [1, 5, 7, 3]
+    uv.extend([at(0, 1), at(0, 0), at(1, 0), at(1, 1)]); // z−: [0, 2, 6, 4]
+    uv
+}
+
+/// Longitude (u, over [0, 2)) and latitude (v, 0 at the south pole, 1 at the north pole) about
+/// the axis through vertex `pole`, for meshes around the origin. A face that straddles the
+/// meridian u = 0 takes its small longitudes one turn up, so the cut is a seam; a corner on a
+/// pole, where longitude is undefined, takes the mean of its face's other corners.
+fn spherical_uv(mesh: &PolyMesh, pole: u32) -> Vec<[f32; 2]> {
+    let point = |v: u32| {
+        let p = &mesh.positions[3 * v as usize..3 * v as usize + 3];
+        let len = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt().max(f32::MIN_POSITIVE);
+        [p[0] / len, p[1] / len, p[2] / len]
+    };
+    let axis = point(pole);
+    // Any direction off the axis, made perpendicular: the meridian u = 0.
+    let helper = if axis[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let along = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let d = along(helper, axis);
+    let e1 = normalize(sub(helper, axis.map(|x| x * d)));
+    // Seen from outside, with the pole up, e2 = axis × e1 points right: u grows to the right.
+    let e2 = cross(axis, e1);
+    let mut uv = Vec::with_capacity(mesh.indices.len());
+    let mut start = 0usize;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        start += n as usize;
+        let polar: Vec<Option<f32>> = face
+            .iter()
+            .map(|&v| {
+                let p = point(v);
+                let (x, y) = (along(p, e1), along(p, e2));
+                (x * x + y * y > 1e-10).then(|| (y.atan2(x) / TAU).rem_euclid(1.0))
+            })
+            .collect();
+        let known = || polar.iter().flatten().copied();
+        let straddles = known().fold(f32::MIN, f32::max) - known().fold(f32::MAX, f32::min) > 0.5;
+        let unwrapped = |u: f32| if straddles && u < 0.5 { u + 1.0 } else { u };
+        let count = known().count().max(1) as f32;
+        let mean = known().map(unwrapped).sum::<f32>() / count;
+        for (&v, u) in face.iter().zip(&polar) {
+            let latitude = 1.0 - along(point(v), axis).clamp(-1.0, 1.0).acos() / PI;
+            uv.push([2.0 * u.map_or(mean, unwrapped), latitude]);
+        }
+    }
+    uv
+}
+
+/// Box mapping: each face projected onto the coordinate plane its normal points most along,
+/// right-handed seen from outside, scaled from [−1, 1] to [0, 1].
+fn box_uv(mesh: &PolyMesh) -> Vec<[f32; 2]> {
+    let mut uv = Vec::with_capacity(mesh.indices.len());
+    let mut start = 0usize;
+    for &n in &mesh.face_sizes {
+        let face = &mesh.indices[start..start + n as usize];
+        start += n as usize;
+        let p = |v: u32| {
+            let i = 3 * v as usize;
+            [mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]]
+        };
+        // Newell's normal: the face's area vector, for any polygon.
+        let mut normal = [0.0f32; 3];
+        for (k, &a) in face.iter().enumerate() {
+            let c = cross(p(a), p(face[(k + 1) % face.len()]));
+            normal = [normal[0] + c[0], normal[1] + c[1], normal[2] + c[2]];
+        }
+        let axis = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs())).unwrap_or(2);
+        let positive = normal[axis] >= 0.0;
+        for &v in face {
+            let [x, y, z] = p(v);
+            // (u, v) with u × v along the normal: v is up (y) on the walls.
+            let (u, w) = match (axis, positive) {
+                (0, true) => (-z, y),
+                (0, false) => (z, y),
+                (1, true) => (x, -z),
+                (1, false) => (x, z),
+                (_, true) => (x, y),
+                (_, false) => (-x, y),
+            };
+            uv.push([(u + 1.0) / 2.0, (w + 1.0) / 2.0]);
+        }
+    }
+    uv
+}
+
+/// A face-varying channel from one value per corner, a vertex's corners with the same value
+/// sharing it: a seam is where they differ.
+fn merge_corner_values(mesh: &PolyMesh, per_corner: &[[f32; 2]]) -> crate::attributes::Attribute {
+    // The values made so far for each vertex: a handful each, scanned.
+    let mut by_vertex: Vec<Vec<([f32; 2], u32)>> = vec![Vec::new(); mesh.num_vertices()];
+    let mut values = Vec::new();
+    let mut indices = Vec::with_capacity(per_corner.len());
+    for (&v, &uv) in mesh.indices.iter().zip(per_corner) {
+        let known = &mut by_vertex[v as usize];
+        let index = match known.iter().find(|(value, _)| *value == uv) {
+            Some(&(_, index)) => index,
+            None => {
+                let index = (values.len() / 2) as u32;
+                values.extend(uv);
+                known.push((uv, index));
+                index
+            }
+        };
+        indices.push(index);
+    }
+    crate::attributes::Attribute::face_varying("uv", 2, values, indices)
+}
+
+fn normalize(a: [f32; 3]) -> [f32; 3] {
+    let len = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt().max(f32::MIN_POSITIVE);
+    a.map(|x| x / len)
+}
+
+// ---------------------------------------------------------------------------------------------
+// What a viewer needs besides the faces: smooth normals and the edges
 
 /// Calls `f(a, b)` for every directed edge `a → b` of every face, face after face.
 fn for_each_half_edge(mesh: &PolyMesh, mut f: impl FnMut(u32, u32)) {
@@ -340,7 +480,7 @@ fn for_each_half_edge(mesh: &PolyMesh, mut f: impl FnMut(u32, u32)) {
 /// cancel out, gets (0, 0, 0). Faces may be any polygons; a non-planar face counts with the
 /// sum of its fan triangles' area vectors.
 pub fn vertex_normals(mesh: &PolyMesh) -> crate::Result<Vec<f32>> {
-    check_flat_arrays(mesh)?;
+    mesh.check_arrays()?;
     let p = |v: u32| {
         let i = 3 * v as usize;
         [mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]]
@@ -377,7 +517,7 @@ pub fn vertex_normals(mesh: &PolyMesh) -> crate::Result<Vec<f32>> {
 /// two faces appears once (from the face where it runs from the lower index to the higher);
 /// a boundary edge appears once, as its one face runs it. Linear time: no sorting, no hashing.
 pub fn edge_list(mesh: &PolyMesh) -> crate::Result<Vec<u32>> {
-    check_flat_arrays(mesh)?;
+    mesh.check_arrays()?;
     let vertices = mesh.num_vertices();
     // The targets of each vertex's outgoing half-edges, grouped by vertex (CSR), so that
     // "does b → a exist" is a scan of b's few neighbours.
@@ -516,5 +656,90 @@ mod demo_tests {
         let mut mesh = cube();
         mesh.positions.pop();
         assert!(vertex_normals(&mesh).unwrap_err().to_string().contains("multiple of 3"));
+    }
+
+    /// The signed area of face-corner values `uv` (shoelace): positive when counter-clockwise.
+    fn signed_area(uv: &[[f32; 2]]) -> f32 {
+        let n = uv.len();
+        (0..n).map(|k| uv[k][0] * uv[(k + 1) % n][1] - uv[(k + 1) % n][0] * uv[k][1]).sum::<f32>()
+            / 2.0
+    }
+
+    #[test]
+    fn demo_uv_layouts_are_valid_counter_clockwise_and_cut_where_expected() {
+        // (name, values: from the layout's closed form, seams: vertices with more than one value)
+        let expected =
+            [("cube", 14, 6), ("torus", 25 * 13, 24 + 12 - 1), ("sheet-with-holes", 96, 0)];
+        for name in DEMO_SHAPES {
+            let mesh = demo_shape(name).unwrap();
+            let uv = demo_shape_uv(name).unwrap();
+            crate::attributes::validate(
+                std::slice::from_ref(&uv),
+                mesh.num_vertices(),
+                mesh.indices.len(),
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!((uv.name.as_str(), uv.item_size), ("uv", 2));
+            let indices = uv.indices.as_ref().unwrap();
+            let value = |c: usize| {
+                let t = indices[c] as usize;
+                [uv.values[2 * t], uv.values[2 * t + 1]]
+            };
+            let mut start = 0;
+            for (f, &n) in mesh.face_sizes.iter().enumerate() {
+                let corners: Vec<[f32; 2]> = (start..start + n as usize).map(value).collect();
+                let area = signed_area(&corners);
+                assert!(area > 1e-4, "{name}: face {f} has UV area {area} ({corners:?})");
+                start += n as usize;
+            }
+            let mut values_of = vec![std::collections::BTreeSet::new(); mesh.num_vertices()];
+            for (&v, &t) in mesh.indices.iter().zip(indices) {
+                values_of[v as usize].insert(t);
+            }
+            let seams = values_of.iter().filter(|s| s.len() > 1).count();
+            if let Some(&(_, values, seam_vertices)) = expected.iter().find(|e| e.0 == name) {
+                assert_eq!((uv.len(), seams), (values, seam_vertices), "{name}");
+            } else {
+                assert!(seams > 0 && uv.len() > mesh.num_vertices(), "{name}: cut open somewhere");
+            }
+        }
+        assert!(demo_shape_uv("teapot").is_none());
+    }
+
+    #[test]
+    fn spherical_uvs_follow_latitude_and_longitude() {
+        // Vertex 0 is the north pole (v = 1), its antipode the south pole (v = 0), and v of
+        // the others is 1 − angle/π from the pole axis. u is twice the longitude in turns; no
+        // face spans half a turn or more (the cut made a seam rather than a face around the
+        // globe).
+        for name in ["icosahedron", "dodecahedron"] {
+            let mesh = demo_shape(name).unwrap();
+            let uv = demo_shape_uv(name).unwrap();
+            let indices = uv.indices.as_ref().unwrap();
+            let axis = [mesh.positions[0], mesh.positions[1], mesh.positions[2]];
+            let norm = |p: &[f32]| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            for (&v, &t) in mesh.indices.iter().zip(indices) {
+                let p = &mesh.positions[3 * v as usize..3 * v as usize + 3];
+                let cos =
+                    (p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2]) / (norm(p) * norm(&axis));
+                let want = 1.0 - cos.clamp(-1.0, 1.0).acos() / PI;
+                let w = uv.values[2 * t as usize + 1];
+                assert!((w - want).abs() < 1e-5, "{name} vertex {v}: v {w} vs {want}");
+            }
+            let mut start = 0;
+            for &n in &mesh.face_sizes {
+                let us: Vec<f32> = indices[start..start + n as usize]
+                    .iter()
+                    .map(|&t| uv.values[2 * t as usize])
+                    .collect();
+                let span = us.iter().fold(f32::MIN, |a, &b| a.max(b))
+                    - us.iter().fold(f32::MAX, |a, &b| a.min(b));
+                assert!(
+                    span < 1.0 && us.iter().all(|&u| (0.0..3.0).contains(&u)),
+                    "{name}: {us:?}"
+                );
+                start += n as usize;
+            }
+        }
     }
 }

@@ -16,7 +16,7 @@ use catalogue::{Case, Expect, Input, JsField, Stage, Val};
 use std::cell::Cell;
 use std::process::Command;
 use subsurf::attributes::Attribute;
-use subsurf::io::read_obj;
+use subsurf::io::{read_obj, read_obj_with_tags};
 use subsurf::scheme::subdivide_with_attributes;
 use subsurf::{subdivide, Boundary, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
@@ -122,11 +122,12 @@ fn rust_error(case: &Case) -> String {
                 }
             }
         }
-        Input::Obj(text) => match (case.stage, read_obj(text)) {
-            (Stage::Obj, Ok(mesh)) => panic!("{name}: read_obj accepted the file: {mesh:?}"),
+        // The reader that reads everything (tags and UVs), as readObj and the CLI do.
+        Input::Obj(text) => match (case.stage, read_obj_with_tags(text)) {
+            (Stage::Obj, Ok(obj)) => panic!("{name}: the reader accepted the file: {obj:?}"),
             (Stage::Obj, Err(e)) => return e.to_string(),
-            (_, Err(e)) => panic!("{name}: read_obj refused a valid file: {e}"),
-            (_, Ok(mesh)) => mesh,
+            (_, Err(e)) => panic!("{name}: the reader refused a valid file: {e}"),
+            (_, Ok(obj)) => obj.mesh,
         },
         Input::Channel(c) => return rust_channel_error(name, c),
         Input::ObjBytes(_) | Input::Js(_) => panic!("{name}: not a Rust API input"),
@@ -363,6 +364,11 @@ cases! {
     obj_coordinate_not_a_number;
     obj_face_word_not_an_index;
     obj_face_repeats_a_vertex_doo_sabin;
+    obj_vt_missing_on_some_corners;
+    obj_vt_missing_on_a_later_face;
+    obj_vt_index_out_of_range;
+    obj_vt_relative_index_before_the_first;
+    obj_vt_coordinate_not_a_number;
     channel_wrong_length;
     channel_not_a_multiple_of_item_size;
     channel_item_size_zero;
@@ -375,7 +381,6 @@ cases! {
     channel_indices_wrong_length;
     channel_indices_out_of_range;
     channel_indices_of_the_wrong_type;
-    channel_face_varying_not_refined_yet;
     obj_valid_file_but_loop_on_a_quad;
 }
 

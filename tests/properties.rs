@@ -615,3 +615,97 @@ fn quad_triangle_prediction_on_a_triangle_and_a_pentagon() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Face-varying channels with random seams
+
+proptest! {
+    #![proptest_config(Config { cases: CASES, failure_persistence: None, ..Config::default() })]
+    /// Random meshes with random seams (random face corners get a value of their own), every
+    /// scheme that refines face-varying channels and every mode, one or two levels: the indices
+    /// are parallel to the result's and in range, nothing is NaN, a constant channel stays
+    /// constant (every rule is affine), a channel without seams under mode `none` follows the
+    /// positions as a vertex-varying one does (closed form: the same affine function of the
+    /// refined positions), and at level 1 of the quad and triangle splits a seam stays a seam
+    /// (corners that saw different values at a vertex see different values at its child).
+    #[test]
+    fn face_varying_channels_with_random_seams(
+        spec in spec(),
+        pick in 0usize..5,
+        mode in 0usize..6,
+        levels in 1u32..3,
+        seams in any::<u64>(),
+        a in prop::array::uniform4(-2.0f32..2.0),
+    ) {
+        use subsurf::attributes::Attribute;
+        use subsurf::FVarLinear;
+        let scheme = [Scheme::CatmullClark, Scheme::Loop, Scheme::QuadTriangle, Scheme::Bilinear, Scheme::Midpoint][pick];
+        let mode = FVarLinear::ALL[mode];
+        let input = input_for(scheme, &spec);
+        let nv = input.num_vertices();
+        // One value per vertex, then some corners get their own.
+        let mut cut = input.indices.clone();
+        let mut extra = 0u32;
+        for (k, slot) in cut.iter_mut().enumerate() {
+            if (seams >> (k % 61)) & 1 == 1 && (k / 61) % 2 == 0 {
+                *slot = nv as u32 + extra;
+                extra += 1;
+            }
+        }
+        let values = nv + extra as usize;
+        let constant = Attribute::face_varying("c", 2, [3.5f32, -1.25].repeat(values), cut.clone());
+        let f = |p: &[f32]| a[0] * p[0] + a[1] * p[1] + a[2] * p[2] + a[3];
+        let affine: Vec<f32> = input.positions.chunks(3).map(f).collect();
+        let smooth = Attribute::face_varying("f", 1, affine, input.indices.clone());
+        let options = options(scheme, levels).with_fvar_linear(mode);
+        let tags = subsurf::Tags::default();
+        let Ok((out, channels)) = subsurf::scheme::subdivide_with_attributes(&input, &[constant, smooth], &options, &tags) else {
+            return Ok(());
+        };
+        for channel in &channels {
+            let indices = channel.indices.as_ref().expect("face-varying");
+            prop_assert_eq!(indices.len(), out.indices.len());
+            prop_assert!(indices.iter().all(|&i| (i as usize) < channel.len()));
+            prop_assert!(channel.values.iter().all(|x| x.is_finite()));
+        }
+        for c in channels[0].values.chunks(2) {
+            prop_assert!((c[0] - 3.5).abs() < 1e-5 && (c[1] + 1.25).abs() < 1e-5, "{:?}", c);
+        }
+        if mode == FVarLinear::None {
+            let scale = out.positions.iter().fold(1.0f32, |m, x| m.max(x.abs()));
+            let f_indices = channels[1].indices.as_ref().unwrap();
+            for (&v, &i) in out.indices.iter().zip(f_indices) {
+                let want = f(&out.positions[3 * v as usize..3 * v as usize + 3]);
+                let got = channels[1].values[i as usize];
+                prop_assert!((got - want).abs() <= 1e-4 * scale, "{} {}: {} vs {}", scheme, levels, got, want);
+            }
+        }
+        let split = match scheme {
+            Scheme::CatmullClark | Scheme::Bilinear => Some(4),
+            Scheme::Loop | Scheme::Midpoint => Some(3),
+            _ => None,
+        };
+        if let (Some(n), 1) = (split, levels) {
+            // The output corner at an old vertex, and the input corner it descends from.
+            let pairs: Vec<(usize, usize)> = if n == 4 {
+                (0..input.indices.len()).map(|h| (4 * h, h)).collect()
+            } else {
+                (0..input.indices.len()).map(|h| (3 * (4 * (h / 3) + h % 3) + h % 3, h)).collect()
+            };
+            let out_c = channels[0].indices.as_ref().unwrap();
+            let mut seen: HashMap<(u32, u32), u32> = HashMap::new();
+            for &(o, i) in &pairs {
+                let v = out.indices[o];
+                prop_assert_eq!(v, input.indices[i]);
+                seen.insert((v, cut[i]), out_c[o]);
+            }
+            for (&(v, x), &value) in &seen {
+                for (&(w, y), &other) in &seen {
+                    if v == w && x != y {
+                        prop_assert_ne!(value, other, "vertex {} values {} and {}", v, x, y);
+                    }
+                }
+            }
+        }
+    }
+}

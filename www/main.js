@@ -3,6 +3,10 @@
 // the result over its control cage. The page itself only draws: meshes, OBJ parsing and writing,
 // the predicted sizes, normals and edge lists all come from subsurf (see worker.js).
 //
+// UVs: the built-in meshes carry UV layouts and OBJ files their vt lines; subsurf refines them as
+// a face-varying channel (the fvarLinear menu picks OpenSubdiv's mode), toDrawable splits the
+// refined vertices along the seams, and the surface shows a checker texture (renderer.js).
+//
 // Creases: an OBJ file's tags (readObj's mesh.tags) come with its mesh; its creased cage edges
 // are drawn in pink, thicker, and subdivide honours them. Clicking a cage edge toggles it
 // between smooth (sharpness 0) and the sharpness on the Creases slider (default 10, infinitely
@@ -12,7 +16,9 @@
 // For tests: <html data-ready="true"> (and window.subsurfReady) once the first result is drawn;
 // after every drawn result data-shape, data-scheme (one name per level, comma-separated),
 // data-level, data-faces, data-vertices, data-faces-in, data-vertices-in, data-job,
-// data-subdivide-ms and data-creases (creased edges the result honours); data-busy="true" from a
+// data-subdivide-ms, data-creases (creased edges the result honours), data-uv ("true" when the
+// drawn surface has refined UVs), data-fvar-linear and data-drawn-vertices (the shaded mesh's
+// vertices: more than data-vertices where UV seams split them); data-busy="true" from a
 // change until its result is on screen (or refused); data-error holds the error message on
 // screen, if any; data-max-level the highest level under the memory guard; data-superseded how
 // many jobs were cut short. window.subsurfDemo.creases() lists the creases of the selected mesh
@@ -61,6 +67,22 @@ const BOUNDARY_LABELS = {
   average: 'average',
   none: 'none',
 };
+const FVAR_LABELS = {
+  none: 'none (smooth everywhere)',
+  'corners-only': 'corners only',
+  'corners-plus1': 'corners plus 1 (default)',
+  'corners-plus2': 'corners plus 2',
+  boundaries: 'boundaries',
+  all: 'all (linear)',
+};
+const FVAR_HINTS = {
+  none: 'UVs are smoothed like the surface, seams and corners too.',
+  'corners-only': 'UV corners stay sharp; seams are smoothed.',
+  'corners-plus1': 'UV corners and where seams meet stay sharp (OpenSubdiv’s and USD’s default).',
+  'corners-plus2': 'As corners plus 1, and darts and single-face corners stay sharp too.',
+  boundaries: 'UVs are linear along seams and boundaries, smooth inside.',
+  all: 'UVs are interpolated linearly everywhere, as bilinear.',
+};
 const BOUNDARY_HINTS = {
   'edge-and-corner': 'Boundary edges stay sharp; corners stay put.',
   'edge-only': 'Boundary edges stay sharp; corners are smoothed.',
@@ -79,6 +101,7 @@ const state = {
   levelSchemes: [], // with perLevel: the scheme of level i + 1
   level: 2,
   boundary: 'edge-and-corner',
+  fvarLinear: 'corners-plus1',
   maxFaces: 1_000_000,
   maxLevel: null,
   predicted: null, // { vertices, faces } after 0..LEVEL_CAP levels, for the last planned job
@@ -119,6 +142,7 @@ function requestDraw(after) {
         smooth: document.querySelector('input[name=shading]:checked').value === 'smooth',
         wireframe: $('wireframe').checked,
         cage: $('cage').checked,
+        texture: $('texture').checked,
       });
     }
     const callbacks = afterDraw.splice(0);
@@ -203,10 +227,13 @@ function submit({ clampLevel = false } = {}) {
     clampLevel: clampLevel || !source.mesh,
     boundary: state.boundary,
     maxFaces: state.maxFaces,
+    fvarLinear: state.fvarLinear,
     // Until its mesh is back from the worker, a file's own tags apply (null).
     tags: source.mesh ? tagOptions(source) : null,
   };
-  const context = { source, posted: performance.now(), cage: source.mesh ?? null, creases: source.mesh ? creaseCount(source) : null };
+  const context = {
+    source, posted: performance.now(), cage: source.mesh ?? null, creases: source.mesh ? creaseCount(source) : null, fvarLinear: state.fvarLinear,
+  };
   runner.run(job, {
     plan: (message) => planned(message, context),
     result: (message) => finished(message, context),
@@ -219,8 +246,8 @@ function submit({ clampLevel = false } = {}) {
 function planned(message, context) {
   const { source } = context;
   if (message.mesh) {
-    const { positions, indices, faceSizes, tags } = message.mesh;
-    source.mesh = { positions, indices, faceSizes };
+    const { positions, indices, faceSizes, tags, attributes } = message.mesh;
+    source.mesh = { positions, indices, faceSizes, ...(attributes ? { attributes } : {}) };
     source.text = null;
     context.cage = source.mesh;
     if (tags) {
@@ -246,9 +273,9 @@ function planned(message, context) {
 }
 
 function finished(message, context) {
-  const { result, normals, edges, cageEdges, level, timings: workerTimings } = message;
+  const { result, surface, edges, cageEdges, level, uvNotice, timings: workerTimings } = message;
   const { source, cage } = context;
-  renderer.setRefined({ positions: result.positions, normals, triangles: result.triangles, edges });
+  renderer.setRefined({ positions: result.positions, surface, edges });
   renderer.setCage({ positions: cage.positions, edges: cageEdges });
   const newSource = display?.source !== source;
   const schemes = schemeList().slice(0, level);
@@ -268,14 +295,15 @@ function finished(message, context) {
   $('time').textContent = `${workerTimings.subdivide.toFixed(1)} ms`;
   $('download').disabled = false;
   $('download').title = `Save the ${count(faces)} faces as a Wavefront OBJ file`;
-  showMessage(notice || `${source.label}: ${describeSchemes(schemes)}.`, notice ? 'notice' : '');
+  const notices = [notice, uvNotice].filter(Boolean).join('\n');
+  showMessage(notices || `${source.label}: ${describeSchemes(schemes)}.`, notices ? 'notice' : '');
 
   requestDraw(() => {
     // Busy until the result is on screen, unless a newer job has started meanwhile.
     if (!runner.busy) setBusy(false);
     const shownAfter = performance.now() - context.posted;
     $('time-detail').textContent =
-      `+ normals and edges ${workerTimings.display.toFixed(1)} ms; on screen ${shownAfter.toFixed(0)} ms after the change`;
+      `+ normals, edges and the drawable mesh ${workerTimings.display.toFixed(1)} ms; on screen ${shownAfter.toFixed(0)} ms after the change`;
     Object.assign(root.dataset, {
       shape: source.value,
       scheme: schemes.join(','),
@@ -287,6 +315,9 @@ function finished(message, context) {
       job: String(message.id),
       subdivideMs: workerTimings.subdivide.toFixed(2),
       creases: String(context.creases),
+      uv: String(Boolean(surface.uvs)),
+      fvarLinear: context.fvarLinear,
+      drawnVertices: String(surface.positions.length / 3),
     });
     if (!root.dataset.ready) {
       timings.navigationToReady = performance.now();
@@ -533,6 +564,12 @@ function selectSource(source) {
   submit({ clampLevel: true });
 }
 
+function setFvarLinear(mode) {
+  state.fvarLinear = mode;
+  $('fvar-linear').value = mode;
+  $('fvar-hint').textContent = FVAR_HINTS[mode] ?? '';
+}
+
 function setBoundary(boundary) {
   state.boundary = boundary;
   $('boundary').value = boundary;
@@ -561,7 +598,8 @@ async function download() {
   const { result, source, schemes, level } = display;
   button.disabled = true;
   try {
-    const blob = await runner.writeObj({ positions: result.positions, indices: result.indices, faceSizes: result.faceSizes });
+    const { positions, indices, faceSizes, attributes } = result;
+    const blob = await runner.writeObj({ positions, indices, faceSizes, ...(attributes ? { attributes } : {}) });
     const base = (source.kind === 'shape' ? source.name : source.label.replace(/\.obj$/i, '')).replace(/[^\w.-]+/g, '_');
     const link = document.createElement('a');
     link.href = URL.createObjectURL(blob);
@@ -605,12 +643,16 @@ function attachControls() {
     setBoundary(event.target.value);
     submit();
   });
+  $('fvar-linear').addEventListener('change', (event) => {
+    setFvarLinear(event.target.value);
+    submit();
+  });
   $('guard').addEventListener('change', (event) => {
     state.maxFaces = Number(event.target.value);
     submit();
   });
 
-  for (const input of document.querySelectorAll('input[name=shading], #wireframe, #cage')) {
+  for (const input of document.querySelectorAll('input[name=shading], #wireframe, #cage, #texture')) {
     input.addEventListener('change', () => requestDraw());
   }
   attachCreaseEditing();
@@ -660,6 +702,8 @@ async function main() {
   fillSelect($('shape'), info.shapes, SHAPE_LABELS);
   fillSelect($('scheme'), info.schemes, SCHEME_LABELS);
   fillSelect($('boundary'), info.boundaries, BOUNDARY_LABELS);
+  fillSelect($('fvar-linear'), info.fvarModes, FVAR_LABELS);
+  setFvarLinear(state.fvarLinear);
   $('scheme').value = state.scheme;
   setBoundary(state.boundary);
   $('crease-sharpness').value = String(state.creaseSharpness);

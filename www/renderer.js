@@ -1,6 +1,10 @@
-// WebGL2 drawing of the demo: the refined surface (smooth or flat shading), its wireframe and
-// the control cage. Only drawing happens here; every position, normal and edge comes from
-// subsurf in the worker.
+// WebGL2 drawing of the demo: the refined surface (smooth or flat shading, with a UV checker
+// texture when the mesh has UVs), its wireframe and the control cage. Only drawing happens here;
+// every position, normal, UV and edge comes from subsurf in the worker.
+//
+// The surface and the wireframe have vertex buffers of their own: with UVs the surface is
+// subsurf's toDrawable mesh, whose vertices are split along UV seams (one index buffer for
+// positions, normals and UVs), while the wireframe's edges index the refined mesh itself.
 //
 // Edges are drawn as line layers made of groups, each group an index buffer with its own
 // colour. The cage has its edges, its creased edges split by sharpness ('sharp': infinitely
@@ -11,12 +15,15 @@
 const SURFACE_VS = `#version 300 es
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 uv;
 uniform mat4 viewProjection;
 out vec3 worldPosition;
 out vec3 smoothNormal;
+out vec2 surfaceUv;
 void main() {
   worldPosition = position;
   smoothNormal = normal;
+  surfaceUv = uv;
   gl_Position = viewProjection * vec4(position, 1.0);
 }`;
 
@@ -26,9 +33,12 @@ const SURFACE_FS = `#version 300 es
 precision highp float;
 in vec3 worldPosition;
 in vec3 smoothNormal;
+in vec2 surfaceUv;
 uniform vec3 eye;
 uniform vec3 light;
 uniform bool smoothShading;
+uniform bool textured;
+uniform sampler2D checker;
 out vec4 color;
 void main() {
   vec3 flatNormal = normalize(cross(dFdx(worldPosition), dFdy(worldPosition)));
@@ -40,8 +50,10 @@ void main() {
   float key = max(dot(normal, light), 0.0);
   float fill = 0.3 * max(dot(normal, toEye), 0.0);
   float specular = pow(max(dot(normal, normalize(light + toEye)), 0.0), 48.0);
-  // The outside is warm, the inside (seen through holes and open boundaries) cool.
+  // The outside is warm, the inside (seen through holes and open boundaries) cool; with UVs the
+  // checker shows through both, tinted.
   vec3 base = gl_FrontFacing ? vec3(0.88, 0.58, 0.3) : vec3(0.45, 0.55, 0.72);
+  if (textured) base = texture(checker, surfaceUv).rgb * (gl_FrontFacing ? vec3(1.0) : vec3(0.6, 0.7, 0.95));
   color = vec4(base * (0.16 + 0.66 * key + fill) + 0.22 * specular, 1.0);
 }`;
 
@@ -94,23 +106,50 @@ function program(gl, vertexSource, fragmentSource, uniforms) {
   return { program: p, ...Object.fromEntries(uniforms.map((name) => [name, gl.getUniformLocation(p, name)])) };
 }
 
-/** Positions, optional normals and index groups on one vertex array each. */
+/**
+ * The UV checker: 8 × 8 squares per unit of UV, light ones shaded from orange (u = 0) to gold
+ * (u = 1) and dark ones from slate to blue along v, so that the direction of the layout and its
+ * seams show; drawn on a canvas, no image file.
+ */
+function checkerCanvas(size = 512, squares = 8) {
+  const canvas = new OffscreenCanvas(size, size);
+  const context = canvas.getContext('2d');
+  const cell = size / squares;
+  for (let j = 0; j < squares; j++) {
+    for (let i = 0; i < squares; i++) {
+      const [u, v] = [(i + 0.5) / squares, (j + 0.5) / squares];
+      context.fillStyle = (i + j) % 2 === 0
+        ? `rgb(${235 - 10 * u} ${150 + 60 * u} ${80 - 40 * u})`
+        : `rgb(${55 + 10 * v} ${62 + 20 * v} ${80 + 70 * v})`;
+      // Canvas rows run down; UV v runs up.
+      context.fillRect(i * cell, size - (j + 1) * cell, cell, cell);
+    }
+  }
+  return canvas;
+}
+
+/** Positions, optional normals and UVs, and index groups on one vertex array each. */
 class MeshBuffers {
   constructor(gl) {
     this.gl = gl;
     this.positions = gl.createBuffer();
     this.normals = gl.createBuffer();
+    this.uvs = gl.createBuffer();
     this.vertexCount = 0;
+    this.hasUvs = false;
     this.groups = new Map(); // name → { vao, buffer, count }
   }
 
-  setVertices(positions, normals) {
+  setVertices(positions, normals, uvs = null) {
     const { gl } = this;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
     gl.bufferData(gl.ARRAY_BUFFER, positions, gl.STATIC_DRAW);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.normals);
     gl.bufferData(gl.ARRAY_BUFFER, normals ?? new Float32Array(positions.length), gl.STATIC_DRAW);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.uvs);
+    gl.bufferData(gl.ARRAY_BUFFER, uvs ?? new Float32Array((positions.length / 3) * 2), gl.STATIC_DRAW);
     this.vertexCount = positions.length / 3;
+    this.hasUvs = uvs !== null;
   }
 
   /** Sets the index buffer of group `name` (triangles, edge pairs, ...); null removes it. */
@@ -131,6 +170,9 @@ class MeshBuffers {
       gl.bindBuffer(gl.ARRAY_BUFFER, this.normals);
       gl.enableVertexAttribArray(1);
       gl.vertexAttribPointer(1, 3, gl.FLOAT, false, 0, 0);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.uvs);
+      gl.enableVertexAttribArray(2);
+      gl.vertexAttribPointer(2, 2, gl.FLOAT, false, 0, 0);
       gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, buffer);
       gl.bindVertexArray(null);
       group = { vao, buffer, count: 0 };
@@ -157,16 +199,30 @@ class MeshBuffers {
 export class Renderer {
   constructor(gl) {
     this.gl = gl;
-    this.surface = program(gl, SURFACE_VS, SURFACE_FS, ['viewProjection', 'eye', 'light', 'smoothShading']);
+    this.surface = program(gl, SURFACE_VS, SURFACE_FS, ['viewProjection', 'eye', 'light', 'smoothShading', 'textured', 'checker']);
     this.lines = program(gl, LINE_VS, LINE_FS, ['viewProjection', 'tint', 'pointSize', 'roundPoints', 'offset']);
     this.refined = new MeshBuffers(gl);
+    this.surfaceMesh = new MeshBuffers(gl);
     this.cage = new MeshBuffers(gl);
+    this.checker = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, this.checker);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, gl.RGBA, gl.UNSIGNED_BYTE, checkerCanvas());
+    gl.generateMipmap(gl.TEXTURE_2D);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
+    const anisotropic = gl.getExtension('EXT_texture_filter_anisotropic');
+    if (anisotropic) gl.texParameterf(gl.TEXTURE_2D, anisotropic.TEXTURE_MAX_ANISOTROPY_EXT, 8);
   }
 
-  /** The refined mesh: `triangles` for the surface, `edges` (and later `sharpEdges`) as lines. */
-  setRefined({ positions, normals, triangles, edges, sharpEdges = null }) {
-    this.refined.setVertices(positions, normals);
-    this.refined.setGroup('triangles', triangles);
+  /**
+   * The refined mesh: `surface` ({ positions, normals, uvs?, triangles }) is drawn shaded, the
+   * checker on it when it has `uvs`; `edges` (and later `sharpEdges`) of `positions` as lines.
+   */
+  setRefined({ positions, surface, edges, sharpEdges = null }) {
+    this.surfaceMesh.setVertices(surface.positions, surface.normals, surface.uvs ?? null);
+    this.surfaceMesh.setGroup('triangles', surface.triangles);
+    this.refined.setVertices(positions, null);
     this.refined.setGroup('edges', edges);
     this.refined.setGroup('sharp', sharpEdges);
   }
@@ -205,7 +261,7 @@ export class Renderer {
     return [r, g, b, a * t * t * (3 - 2 * t)];
   }
 
-  draw(camera, { smooth = true, wireframe = true, cage = true } = {}) {
+  draw(camera, { smooth = true, wireframe = true, cage = true, texture = true } = {}) {
     const { gl } = this;
     const width = gl.drawingBufferWidth;
     const height = gl.drawingBufferHeight;
@@ -228,7 +284,11 @@ export class Renderer {
     gl.uniform3fv(s.eye, eye);
     gl.uniform3fv(s.light, light);
     gl.uniform1i(s.smoothShading, smooth ? 1 : 0);
-    this.refined.draw('triangles', gl.TRIANGLES);
+    gl.uniform1i(s.textured, texture && this.surfaceMesh.hasUvs ? 1 : 0);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, this.checker);
+    gl.uniform1i(s.checker, 0);
+    this.surfaceMesh.draw('triangles', gl.TRIANGLES);
     gl.disable(gl.POLYGON_OFFSET_FILL);
 
     const l = this.lines;

@@ -1,9 +1,10 @@
 //! The OBJ reader on arbitrary text: it returns a valid mesh or an error naming a line of the
-//! file; an accepted mesh builds, writes and reads back unchanged, and subdivides.
+//! file; an accepted mesh builds, writes and reads back unchanged, and subdivides. The reader
+//! with tags and UVs too: its `uv` channel fits the mesh and writes and reads back unchanged.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use subsurf::io::{read_obj, write_obj};
+use subsurf::io::{read_obj, read_obj_with_tags, write_obj, write_obj_with};
 use subsurf::{subdivide, Error, HalfEdgeMesh, Options, Scheme};
 use subsurf_fuzz::{
     check_connectivity, check_error, check_poly, check_result, MAX_ELEMENTS, MAX_FACES,
@@ -11,6 +12,26 @@ use subsurf_fuzz::{
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
+    match read_obj_with_tags(text) {
+        Ok(obj) => {
+            let (vertices, corners) = (obj.mesh.num_vertices(), obj.mesh.indices.len());
+            subsurf::attributes::validate(&obj.attributes, vertices, corners)
+                .unwrap_or_else(|e| panic!("the uv channel does not fit the mesh: {e}"));
+            let written =
+                write_obj_with(&obj.mesh, &obj.attributes).expect("a read uv channel writes");
+            let again = read_obj_with_tags(&written).expect("write_obj_with's output reads back");
+            assert_eq!(
+                (&again.mesh, &again.attributes),
+                (&obj.mesh, &obj.attributes),
+                "UV round trip"
+            );
+        }
+        Err(Error::Obj { line, message }) => {
+            let lines = text.lines().count().max(1);
+            assert!((1..=lines).contains(&line), "line {line} of a {lines}-line file: {message}");
+        }
+        Err(other) => panic!("read_obj_with_tags returned a non-OBJ error: {other:?}"),
+    }
     match read_obj(text) {
         Ok(mesh) => {
             check_poly(&mesh, "read_obj");

@@ -6,8 +6,9 @@
 //! or `TooLarge` (Doo-Sabin, √3 and Quad/Triangle refuse a face that repeats a vertex; the
 //! primal schemes take it); never a panic and never an invalid intermediate mesh. The same call with attribute
 //! channels: the x coordinate as a channel stays the x coordinate of every refined vertex and
-//! the positions do not change; a fuzzed extra channel (any size, values or indices) is refined
-//! or refused with `InvalidAttribute` or `Unsupported`.
+//! the positions do not change; a fuzzed extra channel (any size, values or indices, so
+//! face-varying with any seams, in any face-varying mode) is refined, its indices parallel to
+//! the result's and in range, or refused with `InvalidAttribute` or `Unsupported`.
 #![no_main]
 
 use arbitrary::Arbitrary;
@@ -31,6 +32,7 @@ struct Input {
 
 #[derive(Arbitrary, Debug)]
 struct Channel {
+    mode: u8,
     item_size: u8,
     values: Vec<f32>,
     indices: Option<Vec<u32>>,
@@ -122,7 +124,10 @@ fn check_attributes(
     let x: Vec<f32> = mesh.positions.chunks_exact(3).map(|p| p[0]).collect();
     let mut channels = vec![Attribute::vertex("x", 1, x)];
     let fuzzed = extra.is_some();
+    let mut options = options.clone();
     if let Some(c) = extra {
+        let modes = subsurf::FVarLinear::ALL;
+        options.fvar_linear = modes[c.mode as usize % modes.len()];
         let mut values = c.values;
         values.truncate(16 * MAX_ELEMENTS);
         let indices = c.indices.map(|mut i| {
@@ -133,9 +138,15 @@ fn check_attributes(
         channels.push(Attribute { name: "extra".into(), item_size, values, indices });
     }
     let tags = subsurf::Tags::default();
-    match (subdivide_with_attributes(mesh, &channels, options, &tags), plain) {
+    match (subdivide_with_attributes(mesh, &channels, &options, &tags), plain) {
         (Ok((out, refined)), Ok(expected)) => {
             assert_eq!(&out, expected, "{what}: channels changed the positions");
+            if let Some(extra) = refined.get(1) {
+                if let Some(indices) = &extra.indices {
+                    assert_eq!(indices.len(), out.indices.len(), "{what}: one index per corner");
+                    assert!(indices.iter().all(|&i| (i as usize) < extra.len()), "{what}: range");
+                }
+            }
             let x = &refined[0];
             assert_eq!(x.len(), out.num_vertices(), "{what}: one x per vertex");
             for (p, got) in out.positions.chunks_exact(3).zip(&x.values) {

@@ -2,16 +2,19 @@
 //!
 //! OpenSubdiv `t` tags in the OBJ (creases, corners, holes, `interpolateboundary`,
 //! `creasemethod`, `smoothtriangles`) are used unless `--ignore-tags`; `--boundary` and
-//! `--crease-method` override the file's `interpolateboundary` and `creasemethod`.
+//! `--crease-method` override the file's `interpolateboundary` and `creasemethod`. Texture
+//! coordinates (`vt`, `f v/vt`) are refined as a face-varying channel (`--fvar-linear` says where
+//! they stay linear) and written to the output, unless `--ignore-uv`.
 
 use std::process::ExitCode;
 use std::time::Instant;
-use subsurf::io::{read_obj, read_obj_with_tags, write_obj};
+use subsurf::io::{read_obj_with, write_obj_with, ObjReadOptions};
 use subsurf::scheme::{Boundary, Options, Scheme};
-use subsurf::{CreaseMethod, HalfEdgeMesh, Tags};
+use subsurf::{CreaseMethod, FVarLinear, HalfEdgeMesh};
 
 const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--crease-method M] [--ignore-tags]
-               [--max-faces N] [--max-bytes N] [--stats] INPUT.obj [-o OUTPUT.obj]
+               [--fvar-linear MODE] [--ignore-uv] [--max-faces N] [--max-bytes N] [--stats]
+               INPUT.obj [-o OUTPUT.obj]
 
   --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, sqrt3,
                      bilinear, midpoint;
@@ -22,6 +25,10 @@ const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE]
                      edge-and-corner
   --crease-method M  uniform or chaikin; default: the file's 'creasemethod' tag, else uniform
   --ignore-tags      ignore the file's OpenSubdiv 't' tags (creases, corners, holes, ...)
+  --fvar-linear MODE where the file's texture coordinates (vt) stay linear: none,
+                     corners-only, corners-plus1 (default), corners-plus2, boundaries, all
+                     (OpenSubdiv's FVarLinearInterpolation)
+  --ignore-uv        ignore the file's texture coordinates; the output has none
   --max-faces N      refuse when the result would have more faces (default 16777216)
   --max-bytes N      refuse when the result's arrays would take more bytes (default 1073741824)
   --stats            print counts and timings to stderr
@@ -32,6 +39,8 @@ struct Args {
     boundary: Option<Boundary>,
     crease_method: Option<CreaseMethod>,
     ignore_tags: bool,
+    fvar_linear: FVarLinear,
+    ignore_uv: bool,
     max_faces: u64,
     max_bytes: u64,
     stats: bool,
@@ -45,6 +54,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         boundary: None,
         crease_method: None,
         ignore_tags: false,
+        fvar_linear: FVarLinear::default(),
+        ignore_uv: false,
         max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
         max_bytes: subsurf::scheme::DEFAULT_MAX_BYTES,
         stats: false,
@@ -81,6 +92,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                     Some(value("--crease-method")?.parse().map_err(|e| format!("{e}"))?)
             }
             "--ignore-tags" => parsed.ignore_tags = true,
+            "--fvar-linear" => {
+                parsed.fvar_linear = value("--fvar-linear")?.parse().map_err(|e| format!("{e}"))?
+            }
+            "--ignore-uv" => parsed.ignore_uv = true,
             "--max-bytes" => {
                 let v = value("--max-bytes")?;
                 parsed.max_bytes =
@@ -123,12 +138,10 @@ fn run(args: Args) -> Result<(), String> {
     let text = std::fs::read_to_string(&args.input)
         .map_err(|e| format!("cannot read '{}': {e}", args.input))?;
     let at = |e: subsurf::Error| format!("{}: {e}", args.input);
-    let (input, mut tags, file_boundary) = if args.ignore_tags {
-        (read_obj(&text).map_err(at)?, Tags::default(), None)
-    } else {
-        let obj = read_obj_with_tags(&text).map_err(at)?;
-        (obj.mesh, obj.tags, obj.boundary)
-    };
+    let parts = ObjReadOptions { tags: !args.ignore_tags, uv: !args.ignore_uv };
+    let obj = read_obj_with(&text, parts).map_err(at)?;
+    let (input, mut tags, file_boundary) = (obj.mesh, obj.tags, obj.boundary);
+    let attributes = obj.attributes;
     if let Some(method) = args.crease_method {
         tags.crease_method = method;
     }
@@ -143,16 +156,19 @@ fn run(args: Args) -> Result<(), String> {
         boundary,
         max_faces: args.max_faces,
         max_bytes: args.max_bytes,
-        ..Options::default()
+        fvar_linear: args.fvar_linear,
     };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
-    let output = subsurf::scheme::subdivide_mesh_with_tags(mesh, &options, &tags)
-        .map_err(|e| e.to_string())?;
+    let refine = |channels| {
+        subsurf::scheme::subdivide_mesh_borrowed_with(&mesh, channels, &options, &tags)
+            .map(|refined| refined.into_parts())
+    };
+    let (output, channels) = refine(&attributes).map_err(|e| e.to_string())?;
     let refine_time = t.elapsed();
 
     let t = Instant::now();
-    let text = write_obj(&output);
+    let text = write_obj_with(&output, &channels).map_err(|e| e.to_string())?;
     match &args.output {
         Some(path) => {
             std::fs::write(path, text).map_err(|e| format!("cannot write '{path}': {e}"))?
@@ -178,6 +194,15 @@ fn run(args: Args) -> Result<(), String> {
         );
         eprintln!("input       {in_v} vertices, {in_e} edges, {in_f} faces");
         eprintln!("output      {} vertices, {} faces", output.num_vertices(), output.num_faces());
+        for (before, after) in attributes.iter().zip(&channels) {
+            eprintln!(
+                "{:<11} {} values in, {} out ({} linear)",
+                after.name,
+                before.len(),
+                after.len(),
+                args.fvar_linear
+            );
+        }
         eprintln!("read        {:.3} ms", ms(read_time));
         eprintln!("build       {:.3} ms", ms(build_time));
         eprintln!("subdivide   {:.3} ms", ms(refine_time));

@@ -2,4 +2,7 @@
 
 pub mod obj;
 
-pub use obj::{read_obj, read_obj_with_tags, write_obj, ObjMesh};
+pub use obj::{
+    read_obj, read_obj_with, read_obj_with_tags, write_obj, write_obj_with, ObjMesh,
+    ObjReadOptions, UV,
+};

@@ -1,10 +1,16 @@
-//! Wavefront OBJ: `v` and `f` lines in, `v` and `f` lines out; OpenSubdiv's `t` tag lines in.
+//! Wavefront OBJ: `v`, `vt` and `f` lines in and out; OpenSubdiv's `t` tag lines in.
 //!
-//! Faces may use the `v`, `v/vt`, `v//vn` and `v/vt/vn` forms and negative (relative) indices;
-//! only the position index is used. Comments and every other line (`vt`, `vn`, `g`, `o`, `s`,
-//! `usemtl`, ...) are skipped; [`read_obj`] skips `t` lines too, [`read_obj_with_tags`] reads
-//! them (syntax in `DEVELOPERS.md`, section "OBJ tags"). Errors give the 1-based line number.
+//! Faces may use the `v`, `v/vt`, `v//vn` and `v/vt/vn` forms and negative (relative) indices.
+//! [`read_obj_with_tags`] (and [`read_obj_with`] when asked) reads the texture coordinates into
+//! a face-varying channel named `uv`: the `vt` lines are its values (`u` and `v`; a third
+//! component `w` is dropped, a missing `v` is 0), and each face corner's `vt` index is its value
+//! index, so a vertex on a UV seam has one value per side. Either every face corner of a file
+//! gives a `vt` index or none does. [`read_obj`] reads positions and faces only. Comments and
+//! every other line (`vn`, `g`, `o`, `s`, `usemtl`, ...) are skipped; `t` lines are read by
+//! [`read_obj_with_tags`] (syntax in `DEVELOPERS.md`, section "OBJ tags"). Errors give the
+//! 1-based line number.
 
+use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::options::Boundary;
@@ -12,11 +18,14 @@ use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
+/// The name of the face-varying channel that holds an OBJ file's texture coordinates.
+pub const UV: &str = "uv";
+
 fn obj_error(line: usize, message: impl Into<String>) -> Error {
     Error::Obj { line, message: message.into() }
 }
 
-/// An OBJ file's mesh with the OpenSubdiv tags it carries.
+/// An OBJ file's mesh with the OpenSubdiv tags and the texture coordinates it carries.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ObjMesh {
     pub mesh: PolyMesh,
@@ -25,29 +34,138 @@ pub struct ObjMesh {
     /// The file's `interpolateboundary` tag: 0 `None`, 1 `EdgeAndCorner`, 2 `EdgeOnly`; `None`
     /// (no value) when the file has no such tag.
     pub boundary: Option<Boundary>,
+    /// The face-varying channel [`UV`] (2 floats per value, one index per face corner) when the
+    /// file's faces give `vt` indices; empty otherwise. Ready for
+    /// [`crate::scheme::subdivide_with_attributes`].
+    pub attributes: Vec<Attribute>,
+}
+
+/// What [`read_obj_with`] reads besides the `v` and `f` lines.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ObjReadOptions {
+    /// OpenSubdiv's `t` tag lines; skipped (even malformed ones) when false.
+    pub tags: bool,
+    /// `vt` lines and the `vt` indices of face corners, as the channel [`UV`]; skipped when false.
+    pub uv: bool,
 }
 
 /// Parses OBJ text into a [`PolyMesh`]. Structural checks (face sizes, indices, NaN) happen here
 /// too, so that the error can name the line. A face may repeat a vertex (as OpenSubdiv's
-/// regression shapes do; see [`crate::HalfEdgeMesh`]). `t` lines are skipped.
+/// regression shapes do; see [`crate::HalfEdgeMesh`]). `t` and `vt` lines and the `vt` indices
+/// of face corners are skipped.
 pub fn read_obj(text: &str) -> Result<PolyMesh> {
-    read(text, false).map(|obj| obj.mesh)
+    read_obj_with(text, ObjReadOptions::default()).map(|obj| obj.mesh)
 }
 
-/// Parses OBJ text and its OpenSubdiv `t` tags: `crease`, `corner`, `hole`,
-/// `interpolateboundary`, `creasemethod`, `smoothtriangles`. Hierarchical edits (`vertexedit`,
-/// `edgeedit`, `faceedit`), face-varying tags and unknown tag names are skipped. A malformed tag
-/// (counts that do not match its values, a vertex, edge or face the file does not have, a
-/// negative or NaN sharpness, an unknown option value) is an error naming its line.
+/// Parses OBJ text, its OpenSubdiv `t` tags (`crease`, `corner`, `hole`,
+/// `interpolateboundary`, `creasemethod`, `smoothtriangles`) and its texture coordinates (the
+/// face-varying channel [`UV`]). Hierarchical edits (`vertexedit`, `edgeedit`, `faceedit`),
+/// face-varying tags and unknown tag names are skipped. A malformed tag (counts that do not
+/// match its values, a vertex, edge or face the file does not have, a negative or NaN
+/// sharpness, an unknown option value), a malformed `vt` line, a `vt` index the file does not
+/// have, or faces that give `vt` indices on some corners and not on others are errors naming
+/// the line.
 pub fn read_obj_with_tags(text: &str) -> Result<ObjMesh> {
-    read(text, true)
+    read_obj_with(text, ObjReadOptions { tags: true, uv: true })
 }
 
-fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
+/// Parses OBJ text, reading tags and texture coordinates as `options` says (the command line's
+/// `--ignore-tags` reads the UVs but not the tags).
+pub fn read_obj_with(text: &str, options: ObjReadOptions) -> Result<ObjMesh> {
+    read(text, options)
+}
+
+/// The texture coordinates of a file as they are read: the `vt` values, the value index of each
+/// face corner, and whether the corners give one (decided by the first face, with its line).
+#[derive(Default)]
+struct UvReader {
+    values: Vec<f32>,
+    indices: Vec<u32>,
+    /// `(corners give vt indices, line of the first face)`.
+    form: Option<(bool, usize)>,
+}
+
+impl UvReader {
+    /// `vt u [v [w]]`: `v` defaults to 0 and `w` is dropped, as the channel has two floats.
+    fn value(&mut self, mut words: std::str::SplitWhitespace, line: usize) -> Result<()> {
+        let u = words.next().ok_or_else(|| {
+            obj_error(line, "texture coordinate has no values; 'vt' needs u [v [w]]")
+        })?;
+        self.values.push(parse_coordinate(u, line)?);
+        let v = match words.next() {
+            Some(word) => parse_coordinate(word, line)?,
+            None => 0.0,
+        };
+        self.values.push(v);
+        if let Some(w) = words.next() {
+            parse_coordinate(w, line)?;
+        }
+        Ok(())
+    }
+
+    /// The `vt` part of face corner `word` (`7/2`, `7/2/3`, `7//3`, `7`), if any.
+    fn corner(&mut self, word: &str, line: usize) -> Result<()> {
+        let vt = word.split('/').nth(1).filter(|t| !t.is_empty());
+        let (given, first_line) = *self.form.get_or_insert((vt.is_some(), line));
+        match (vt, given) {
+            (Some(vt), true) => {
+                let count = self.values.len() / 2;
+                let index = resolve_index(vt, word, count, line, "texture coordinate", "'vt' line")?;
+                self.indices.push(index);
+            }
+            (None, false) => {}
+            (Some(_), false) => {
+                return Err(obj_error(
+                    line,
+                    format!(
+                        "face corner '{word}' gives a texture coordinate (attribute '{UV}'), but the face on line {first_line} gives none; give every face corner a vt index (v/vt) or none"
+                    ),
+                ))
+            }
+            (None, true) => {
+                return Err(obj_error(
+                    line,
+                    format!(
+                        "face corner '{word}' has no texture coordinate (attribute '{UV}'), but the face on line {first_line} gives them; give every face corner a vt index (v/vt) or none"
+                    ),
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// The channel, once every `vt` line is known: each index is checked against them.
+    fn finish(self, face_sizes: &[u32], face_lines: &[usize]) -> Result<Vec<Attribute>> {
+        if self.form.is_none_or(|(given, _)| !given) {
+            return Ok(Vec::new());
+        }
+        let count = self.values.len() / 2;
+        if let Some(k) = self.indices.iter().position(|&t| t as usize >= count) {
+            // The face of corner k: the first whose corners reach past it.
+            let mut end = 0usize;
+            let face = face_sizes.iter().position(|&n| {
+                end += n as usize;
+                end > k
+            });
+            let line = face.map_or(1, |f| face_lines[f]);
+            return Err(obj_error(
+                line,
+                format!(
+                    "face refers to texture coordinate {} (attribute '{UV}'), but the file has only {count} 'vt' lines",
+                    self.indices[k] as u64 + 1
+                ),
+            ));
+        }
+        Ok(vec![Attribute::face_varying(UV, 2, self.values, self.indices)])
+    }
+}
+
+fn read(text: &str, options: ObjReadOptions) -> Result<ObjMesh> {
     let mut mesh = PolyMesh::default();
     // Line of each face, to name it when a later check fails.
     let mut face_lines: Vec<usize> = Vec::new();
     let mut tags: Vec<RawTag> = Vec::new();
+    let mut uv = UvReader::default();
     for (number, raw) in text.lines().enumerate() {
         let line_no = number + 1;
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -63,12 +181,16 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
                 }
                 mesh.positions.extend_from_slice(&xyz);
             }
+            Some("vt") if options.uv => uv.value(words, line_no)?,
             Some("f") => {
                 let vertex_count = mesh.positions.len() / 3;
                 let start = mesh.indices.len();
                 for word in words {
                     let index = parse_face_index(word, vertex_count, line_no)?;
                     mesh.indices.push(index);
+                    if options.uv {
+                        uv.corner(word, line_no)?;
+                    }
                 }
                 let n = mesh.indices.len() - start;
                 if n < 3 {
@@ -80,7 +202,7 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
                 mesh.face_sizes.push(n as u32);
                 face_lines.push(line_no);
             }
-            Some("t") if with_tags => {
+            Some("t") if options.tags => {
                 if let Some(tag) = parse_tag(words, line_no)? {
                     tags.push(tag);
                 }
@@ -109,7 +231,8 @@ fn read(text: &str, with_tags: bool) -> Result<ObjMesh> {
             "the file has no 'v' lines; a mesh needs vertices",
         ));
     }
-    let mut obj = ObjMesh { mesh, ..ObjMesh::default() };
+    let attributes = uv.finish(&mesh.face_sizes, &face_lines)?;
+    let mut obj = ObjMesh { mesh, attributes, ..ObjMesh::default() };
     apply_tags(&mut obj, &tags)?;
     Ok(obj)
 }
@@ -348,17 +471,38 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
 /// The 0-based position index of a face corner such as `7`, `7/2`, `7//3`, `-1/2/3`.
 fn parse_face_index(word: &str, vertex_count: usize, line: usize) -> Result<u32> {
     let first = word.split('/').next().unwrap_or("");
+    resolve_index(first, word, vertex_count, line, "vertex", "vertex")
+}
+
+/// The 0-based index that `text` (part of face corner `word`) names among the `count` items
+/// (`what`, each defined by a `line_kind`) so far: 1-based, or negative for relative indices.
+fn resolve_index(
+    text: &str,
+    word: &str,
+    count: usize,
+    line: usize,
+    what: &str,
+    line_kind: &str,
+) -> Result<u32> {
+    let index_name =
+        if what == "vertex" { "face index".to_string() } else { format!("{what} index") };
     let value: i64 =
-        first.parse().map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
+        text.parse().map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
     let resolved = match value {
-        0 => return Err(obj_error(line, "face index 0 is not allowed; OBJ indices start at 1")),
+        0 => {
+            return Err(obj_error(
+                line,
+                format!("{index_name} 0 is not allowed; OBJ indices start at 1"),
+            ))
+        }
         v if v > 0 => v - 1,
         v => {
-            let r = vertex_count as i64 + v;
+            let r = count as i64 + v;
             if r < 0 {
+                let relative = if what == "vertex" { String::new() } else { format!(" {what}") };
                 return Err(obj_error(
                     line,
-                    format!("relative index {v} reaches before the first vertex ({vertex_count} defined so far)"),
+                    format!("relative{relative} index {v} reaches before the first {line_kind} ({count} defined so far)"),
                 ));
             }
             r
@@ -367,14 +511,48 @@ fn parse_face_index(word: &str, vertex_count: usize, line: usize) -> Result<u32>
     u32::try_from(resolved)
         .ok()
         .filter(|&i| i < u32::MAX)
-        .ok_or_else(|| obj_error(line, format!("face index {value} is too large")))
+        .ok_or_else(|| obj_error(line, format!("{index_name} {value} is too large")))
 }
 
 /// Writes `v` and `f` lines (1-based indices).
 pub fn write_obj(mesh: &PolyMesh) -> String {
-    let mut out = String::with_capacity(mesh.positions.len() * 12 + mesh.indices.len() * 8);
+    write(mesh, None)
+}
+
+/// Writes `v` and `f` lines and, when `attributes` has a channel named [`UV`], its values as
+/// `vt` lines and the faces as `f v/vt` corners: a face-varying channel gives each corner its
+/// own value index, a vertex-varying one the vertex's. Other channels are left out (OBJ has no
+/// place for them). The `uv` channel is checked against the mesh first (its lengths and
+/// indices, and an item size of 1 to 3, the components a `vt` line holds).
+pub fn write_obj_with(mesh: &PolyMesh, attributes: &[Attribute]) -> Result<String> {
+    let Some(uv) = attributes.iter().find(|a| a.name == UV) else {
+        return Ok(write(mesh, None));
+    };
+    attributes::validate(std::slice::from_ref(uv), mesh.num_vertices(), mesh.indices.len())?;
+    if uv.item_size > 3 {
+        return Err(Error::InvalidAttribute(format!(
+            "attribute '{UV}': itemSize is {}, but an OBJ 'vt' line holds 1 to 3 components",
+            uv.item_size
+        )));
+    }
+    Ok(write(mesh, Some(uv)))
+}
+
+fn write(mesh: &PolyMesh, uv: Option<&Attribute>) -> String {
+    let uv_len = uv.map_or(0, |a| a.values.len() * 12);
+    let mut out =
+        String::with_capacity(mesh.positions.len() * 12 + mesh.indices.len() * 16 + uv_len);
     for p in mesh.positions.chunks_exact(3) {
         let _ = writeln!(out, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    if let Some(uv) = uv {
+        for value in uv.values.chunks_exact(uv.item_size) {
+            out.push_str("vt");
+            for x in value {
+                let _ = write!(out, " {x}");
+            }
+            out.push('\n');
+        }
     }
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
@@ -382,8 +560,15 @@ pub fn write_obj(mesh: &PolyMesh) -> String {
             break;
         };
         out.push('f');
-        for &i in face {
-            let _ = write!(out, " {}", i as u64 + 1);
+        for (k, &i) in face.iter().enumerate() {
+            match uv.map(|a| a.indices.as_ref().map_or(i, |indices| indices[start + k])) {
+                Some(t) => {
+                    let _ = write!(out, " {}/{}", i as u64 + 1, t as u64 + 1);
+                }
+                None => {
+                    let _ = write!(out, " {}", i as u64 + 1);
+                }
+            }
         }
         out.push('\n');
         start += n as usize;

@@ -72,6 +72,33 @@ pub struct PolyMesh {
 }
 
 impl PolyMesh {
+    /// Checks that the arrays fit together (whole vertices, face sizes summing to the index
+    /// count, every index naming a vertex) without building the half-edge mesh: one pass over
+    /// the faces, for helpers that only walk them (normals, edges, drawable meshes).
+    pub fn check_arrays(&self) -> crate::Result<()> {
+        if !self.positions.len().is_multiple_of(3) {
+            return Err(crate::Error::InvalidMesh(format!(
+                "positions has {} entries, which is not a multiple of 3 (x, y, z per vertex)",
+                self.positions.len()
+            )));
+        }
+        let total: u64 = self.face_sizes.iter().map(|&n| n as u64).sum();
+        if total != self.indices.len() as u64 {
+            return Err(crate::Error::InvalidMesh(format!(
+                "faceSizes add up to {total} but indices has {} entries; they must be equal",
+                self.indices.len()
+            )));
+        }
+        let vertices = self.num_vertices();
+        if let Some(k) = self.indices.iter().position(|&i| i as usize >= vertices) {
+            return Err(crate::Error::InvalidMesh(format!(
+                "indices[{k}] refers to vertex {}, but there are only {vertices} vertices",
+                self.indices[k]
+            )));
+        }
+        Ok(())
+    }
+
     pub fn num_vertices(&self) -> usize {
         self.positions.len() / 3
     }

@@ -16,7 +16,7 @@ pub mod sqrt3;
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
 use crate::primvar::Primvar;
-use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules};
+use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules, Weights};
 
 /// Refuses a mesh with a cell that repeats a vertex, naming the first, for `scheme`, which
 /// cannot take one (Doo-Sabin, √3, Quad/Triangle).
@@ -50,6 +50,13 @@ pub trait PrimalSplit<R> {
     const FACE_SIZE: usize;
     /// True when a last level's faces can stay implicit in the parent ([`crate::refined::Refined`]).
     const IMPLICIT_FACES: bool;
+    /// True when every cell gets a face point: child vertices are `[vertices | face points |
+    /// edge points]`, otherwise `[vertices | edge points]`.
+    const FACE_POINTS: bool;
+    /// The rule of edge `edge`'s point.
+    fn edge_rule(rules: &R, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights);
+    /// The rule of vertex `vertex`'s new value.
+    fn vertex_rule(rules: &R, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights);
     /// The new values of `parent` (positions or other vertex-varying data) in child vertex order.
     fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P;
     /// The child faces' vertex indices.
@@ -71,6 +78,17 @@ pub struct Ptq;
 impl<R: QuadSplitRules> PrimalSplit<R> for Pqq {
     const FACE_SIZE: usize = 4;
     const IMPLICIT_FACES: bool = true;
+    const FACE_POINTS: bool = true;
+
+    #[inline]
+    fn edge_rule(rules: &R, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        rules.edge_point(mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_rule(rules: &R, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        rules.vertex_point(mesh, vertex, w)
+    }
 
     fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
         pqq::refine_values(mesh, rules, parent)
@@ -97,6 +115,17 @@ impl<R: QuadSplitRules> PrimalSplit<R> for Pqq {
 impl<R: TriSplitRules> PrimalSplit<R> for Ptq {
     const FACE_SIZE: usize = 3;
     const IMPLICIT_FACES: bool = false;
+    const FACE_POINTS: bool = false;
+
+    #[inline]
+    fn edge_rule(rules: &R, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        rules.edge_point(mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_rule(rules: &R, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        rules.vertex_point(mesh, vertex, w)
+    }
 
     fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
         ptq::refine_values(mesh, rules, parent)

@@ -66,7 +66,7 @@ pub fn child_counts(
 
 /// The split boundary half-edge of each cell (`u32::MAX` for none): its first boundary
 /// half-edge when the level refines the boundary and the cell is a triangle.
-fn split_half_edges(mesh: &HalfEdgeMesh, refine_boundary: bool) -> Vec<u32> {
+pub(crate) fn split_half_edges(mesh: &HalfEdgeMesh, refine_boundary: bool) -> Vec<u32> {
     if !refine_boundary {
         return vec![NONE; mesh.num_cells()];
     }
@@ -83,7 +83,7 @@ fn split_half_edges(mesh: &HalfEdgeMesh, refine_boundary: bool) -> Vec<u32> {
 
 /// The first child vertex of each cell: its centroid, or the first of its two boundary points.
 /// A prefix count, and the number of child vertices.
-fn first_child_vertices(mesh: &HalfEdgeMesh, split: &[u32]) -> (Vec<u32>, usize) {
+pub(crate) fn first_child_vertices(mesh: &HalfEdgeMesh, split: &[u32]) -> (Vec<u32>, usize) {
     let centroids = split.iter().filter(|&&b| b == NONE).count() as u32;
     let base = mesh.num_vertices() as u32;
     let (mut next_centroid, mut next_pair) = (base, base + centroids);

@@ -17,7 +17,7 @@ use crate::attributes::{self, Attribute};
 use crate::error::Error;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::scheme::{self, Boundary, Options, Refined, Scheme};
+use crate::scheme::{self, Boundary, FVarLinear, Options, Refined, Scheme};
 use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
@@ -46,7 +46,7 @@ const TYPESCRIPT_SECTION: &'static str = TYPESCRIPT_TYPES;
 const TYPESCRIPT_TYPES: &str = include_str!("../../js/types.d.ts");
 
 /// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
-const OPTION_KEYS: [&str; 10] = [
+const OPTION_KEYS: [&str; 11] = [
     "scheme",
     "levels",
     "boundary",
@@ -57,6 +57,7 @@ const OPTION_KEYS: [&str; 10] = [
     "holes",
     "creaseMethod",
     "smoothTriangles",
+    "fvarLinear",
 ];
 
 /// Mesh fields read from the input object.
@@ -65,8 +66,9 @@ const MESH_KEYS: [&str; 4] = ["positions", "indices", "faceSizes", "attributes"]
 /// Fields of one attribute channel.
 const CHANNEL_KEYS: [&str; 3] = ["array", "itemSize", "indices"];
 
-/// Mesh fields accepted and ignored: the extra output of `subdivide` and of `readObj`.
-const IGNORED_MESH_KEYS: [&str; 2] = ["triangles", "tags"];
+/// Mesh fields accepted and ignored: the extra output of `subdivide`, `readObj` and
+/// `toDrawable`.
+const IGNORED_MESH_KEYS: [&str; 3] = ["triangles", "tags", "origins"];
 
 /// The most levels one call accepts (the library's [`scheme::MAX_LEVELS`]).
 pub const MAX_LEVELS: u32 = scheme::MAX_LEVELS as u32;
@@ -179,9 +181,11 @@ impl BaseMesh {
         self.mesh.set_positions(positions).map_err(js_error)
     }
 
-    /// Replaces the values of the vertex-varying channel `name` (given to the constructor in
-    /// `mesh.attributes`): `itemSize` floats per vertex, all finite. Throws, and leaves the
-    /// channel as it was, otherwise.
+    /// Replaces the values of the channel `name` (given to the constructor in `mesh.attributes`):
+    /// `itemSize` floats per value, all finite; one value per vertex for a vertex-varying
+    /// channel. A face-varying channel keeps its `indices`, so the new array needs a value for
+    /// every index they use (to change the indices, build a new `BaseMesh`). Throws, and leaves
+    /// the channel as it was, otherwise.
     #[wasm_bindgen(js_name = setAttribute)]
     pub fn set_attribute(
         &mut self,
@@ -196,17 +200,12 @@ impl BaseMesh {
                  give every channel to the BaseMesh constructor in mesh.attributes"
             ))));
         };
-        if self.attributes[i].is_face_varying() {
-            return Err(js_error(Error::InvalidAttribute(format!(
-                "attribute '{name}': setAttribute takes vertex-varying channels only"
-            ))));
-        }
         let field = format!("attributes.{name}.array");
         if typed_array_kind(array).as_deref() != Some("Float32Array") {
             return Err(js_error(wrong_array_type(&field, "Float32Array", array)));
         }
-        let mut channel = self.attributes[i].clone();
-        channel.values = copy_f32(array, &field).map_err(js_error)?;
+        let values = copy_f32(array, &field).map_err(js_error)?;
+        let channel = Attribute { values, ..self.attributes[i].clone() };
         let vertices = self.mesh.num_vertices();
         attributes::validate(std::slice::from_ref(&channel), vertices, self.mesh.num_half_edges())
             .map_err(js_error)?;
@@ -227,10 +226,12 @@ impl BaseMesh {
     }
 }
 
-/// Parses the text of a Wavefront OBJ file: `v` and `f` lines, and OpenSubdiv's `t` tag lines
-/// (`crease`, `corner`, `hole`, `interpolateboundary`, `creasemethod`, `smoothtriangles`) as
-/// `tags`, in the shapes `subdivide`'s options take. Everything else is skipped. A malformed
-/// line, tag lines included, throws an `Error` naming the line.
+/// Parses the text of a Wavefront OBJ file: `v` and `f` lines; `vt` lines and the corners' `vt`
+/// indices as the face-varying channel `attributes.uv` (when the faces give them); and
+/// OpenSubdiv's `t` tag lines (`crease`, `corner`, `hole`, `interpolateboundary`,
+/// `creasemethod`, `smoothtriangles`) as `tags`, in the shapes `subdivide`'s options take.
+/// Everything else is skipped. A malformed line, tag and `vt` lines included, and faces that
+/// give `vt` indices on some corners but not others, throw an `Error` naming the line.
 #[wasm_bindgen(js_name = readObj, unchecked_return_type = "ObjMesh")]
 pub fn read_obj(
     #[wasm_bindgen(unchecked_param_type = "string")] text: &JsValue,
@@ -245,6 +246,9 @@ pub fn read_obj(
     let obj = io::read_obj_with_tags(&text).map_err(js_error)?;
     let object = mesh_object(&obj.mesh)?;
     set_field(&object, "tags", &obj_tags_object(&obj.tags, obj.boundary)?)?;
+    if !obj.attributes.is_empty() {
+        set_field(&object, "attributes", &channels_object(&obj.attributes)?)?;
+    }
     Ok(object)
 }
 
@@ -280,16 +284,21 @@ fn obj_tags_object(tags: &Tags, boundary: Option<Boundary>) -> JsResult<JsValue>
     Ok(object.into())
 }
 
-/// Writes a polygon mesh as Wavefront OBJ text (`v` and `f` lines, 1-based indices).
+/// Writes a polygon mesh as Wavefront OBJ text (`v` and `f` lines, 1-based indices). A channel
+/// `mesh.attributes.uv` (itemSize 1 to 3) is written as `vt` lines and `f v/vt` corners:
+/// face-varying, each corner with its own value; vertex-varying, each vertex's. Other channels
+/// have no place in OBJ and are left out.
 #[wasm_bindgen(js_name = writeObj)]
 pub fn write_obj(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
 ) -> JsResult<String> {
-    let mesh = read_mesh(mesh).map_err(js_error)?;
+    let poly = read_mesh(mesh).map_err(js_error)?;
     // The library's mesh builder is the one place that knows what a valid mesh is; running it
     // here keeps a bad index from turning into an OBJ file no reader accepts.
-    HalfEdgeMesh::from_poly(&mesh).map_err(js_error)?;
-    Ok(io::write_obj(&mesh))
+    HalfEdgeMesh::from_poly(&poly).map_err(js_error)?;
+    let attributes = read_attributes(mesh).map_err(js_error)?;
+    attributes::validate(&attributes, poly.num_vertices(), poly.indices.len()).map_err(js_error)?;
+    io::write_obj_with(&poly, &attributes).map_err(js_error)
 }
 
 /// The names `options.scheme` accepts, in the library's order.
@@ -302,6 +311,13 @@ pub fn scheme_names() -> Array {
 #[wasm_bindgen(js_name = boundaryRules, unchecked_return_type = "BoundaryRule[]")]
 pub fn boundary_rules() -> Array {
     Boundary::ALL.iter().map(|b| JsValue::from_str(b.name())).collect()
+}
+
+/// The names `options.fvarLinear` accepts, from smoothest to most linear (the default is
+/// 'corners-plus1').
+#[wasm_bindgen(js_name = fvarLinearModes, unchecked_return_type = "FVarLinearMode[]")]
+pub fn fvar_linear_modes() -> Array {
+    FVarLinear::ALL.iter().map(|m| JsValue::from_str(m.name())).collect()
 }
 
 /// The version of the subsurf package.
@@ -336,9 +352,14 @@ mod tests {
             format!("Default {}.", crate::scheme::DEFAULT_MAX_FACES),
             format!("Default '{}'.", Scheme::default().name()),
             format!("Default '{}'.", Boundary::default().name()),
+            format!("Default '{}'.", FVarLinear::default().name()),
         ];
+        let modes = format!(
+            "export type FVarLinearMode = {};",
+            union(FVarLinear::ALL.iter().map(|m| m.name()))
+        );
         let keys = OPTION_KEYS.map(|key| format!(" {key}?: "));
-        for text in [schemes, boundaries].iter().chain(&defaults).chain(&keys) {
+        for text in [schemes, boundaries, modes].iter().chain(&defaults).chain(&keys) {
             assert!(types.contains(text.as_str()), "TypeScript section should contain {text:?}");
         }
     }

@@ -46,13 +46,14 @@ pub(super) fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
     let boundary = read_boundary(&field("boundary")?)?;
     let max_faces = read_limit(&field("maxFaces")?, "maxFaces")?;
     let max_bytes = read_limit(&field("maxBytes")?, "maxBytes")?;
+    let fvar_linear = read_fvar_linear(&field("fvarLinear")?)?;
     let defaults = Options::default();
     let options = Options {
         schemes,
         boundary: boundary.unwrap_or(defaults.boundary),
         max_faces: max_faces.unwrap_or(defaults.max_faces),
         max_bytes: max_bytes.unwrap_or(defaults.max_bytes),
-        fvar_linear: defaults.fvar_linear,
+        fvar_linear: fvar_linear.unwrap_or(defaults.fvar_linear),
     };
     Ok((options, read_tags(&field)?))
 }
@@ -206,6 +207,29 @@ pub(super) fn read_boundary(value: &JsValue) -> Result<Option<Boundary>, Error> 
             describe(value)
         ))),
     }
+}
+
+/// `fvarLinear`: one of the six names; a near miss gets a suggestion.
+pub(super) fn read_fvar_linear(value: &JsValue) -> Result<Option<FVarLinear>, Error> {
+    if value.is_undefined() {
+        return Ok(None);
+    }
+    let names: Vec<&str> = FVarLinear::ALL.iter().map(|m| m.name()).collect();
+    let allowed = quoted_list(names.iter().copied());
+    let Some(name) = value.as_string() else {
+        return Err(option_error(format!(
+            "fvarLinear must be one of {allowed}, got {}",
+            describe(value)
+        )));
+    };
+    name.parse().map(Some).map_err(|_| {
+        let suggestion =
+            closest(&name, &names).map(|k| format!(" (did you mean '{k}'?)")).unwrap_or_default();
+        option_error(format!(
+            "unknown fvarLinear '{name}'{suggestion}; use one of {allowed} (OpenSubdiv's \
+             face-varying linear interpolation: where UVs stay linear)"
+        ))
+    })
 }
 
 pub(super) enum SchemeChoice {

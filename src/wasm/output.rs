@@ -100,19 +100,24 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     set_field(&object, "faceSizes", &face_sizes.finish()?)?;
     set_field(&object, "triangles", &triangles.finish()?)?;
     if !refined.attributes().is_empty() {
-        let channels = Object::new();
-        for a in refined.attributes() {
-            let channel = Object::new();
-            set_field(&channel, "array", &Float32Array::from(&a.values[..]))?;
-            set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
-            if let Some(indices) = &a.indices {
-                set_field(&channel, "indices", &Uint32Array::from(&indices[..]))?;
-            }
-            set_field(&channels, &a.name, &channel)?;
-        }
-        set_field(&object, "attributes", &channels)?;
+        set_field(&object, "attributes", &channels_object(refined.attributes())?)?;
     }
     Ok(object.into())
+}
+
+/// `{ name: { array, itemSize, indices? } }`: fresh arrays, `indices` for face-varying channels.
+pub(super) fn channels_object(attributes: &[Attribute]) -> JsResult<JsValue> {
+    let channels = Object::new();
+    for a in attributes {
+        let channel = Object::new();
+        set_field(&channel, "array", &Float32Array::from(&a.values[..]))?;
+        set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
+        if let Some(indices) = &a.indices {
+            set_field(&channel, "indices", &Uint32Array::from(&indices[..]))?;
+        }
+        set_field(&channels, &a.name, &channel)?;
+    }
+    Ok(channels.into())
 }
 
 pub(super) fn u32_view(chunk: &[u32]) -> JsValue {

@@ -1,8 +1,7 @@
-//! Helpers for viewers (the demo page): named shapes, predicted sizes, normals, edges.
+//! Helpers for viewers (the demo page): named shapes, predicted sizes, normals, edges, and
+//! meshes with seams made drawable.
 
 use super::*;
-
-// Helpers for viewers (the demo page): named shapes, predicted sizes, normals, edges
 
 #[wasm_bindgen(typescript_custom_section)]
 pub(super) const VIEWER_TYPESCRIPT_SECTION: &'static str = include_str!("../../js/viewer.d.ts");
@@ -14,13 +13,20 @@ pub fn shape_names() -> Array {
 }
 
 /// A built-in mesh by name (see `shapeNames()`): the demo page's cube, torus, sheet with holes,
-/// icosahedron, dodecahedron and house (quads and triangles).
-#[wasm_bindgen(js_name = shape, unchecked_return_type = "PolygonMesh")]
+/// icosahedron, dodecahedron and house (quads and triangles), with its UV layout as the
+/// face-varying channel `attributes.uv` (seams where the layout cuts the surface open).
+#[wasm_bindgen(js_name = shape, unchecked_return_type = "ShapeMesh")]
 pub fn shape(#[wasm_bindgen(unchecked_param_type = "string")] name: &JsValue) -> JsResult<JsValue> {
-    let mesh = name.as_string().and_then(|name| crate::shapes::demo_shape(&name));
-    match mesh {
-        Some(mesh) => mesh_object(&mesh),
-        None => Err(JsError::new(&format!(
+    let text = name.as_string();
+    let mesh = text.as_deref().and_then(crate::shapes::demo_shape);
+    let uv = text.as_deref().and_then(crate::shapes::demo_shape_uv);
+    match (mesh, uv) {
+        (Some(mesh), Some(uv)) => {
+            let object = mesh_object(&mesh)?;
+            set_field(&object, "attributes", &channels_object(&[uv])?)?;
+            Ok(object)
+        }
+        _ => Err(JsError::new(&format!(
             "unknown shape {}; use one of {}",
             describe(name),
             quoted_list(crate::shapes::DEMO_SHAPES.iter().copied())
@@ -82,4 +88,29 @@ pub fn edge_list(
     let mesh = read_mesh(mesh).map_err(js_error)?;
     let edges = crate::shapes::edge_list(&mesh).map_err(js_error)?;
     Ok(Uint32Array::from(&edges[..]))
+}
+
+/// A mesh with face-varying channels (a result with UVs) as one WebGL index buffer needs it: one
+/// vertex per distinct combination of a vertex and the value indices of its face corners, so
+/// vertices split along seams. Returns `positions`, `indices` and `faceSizes` in the new
+/// numbering, `triangles` (the fan of each face, as `subdivide`'s), `origins` (the input vertex
+/// of each new one, ascending) and `attributes`: every channel of `mesh.attributes` with one
+/// value per new vertex (vertex-varying ones copied from the origin, face-varying ones
+/// resolved, no `indices`). Vertices no face uses are left out. Checks the arrays as
+/// `subdivide` does.
+#[wasm_bindgen(js_name = toDrawable, unchecked_return_type = "DrawableMesh")]
+pub fn to_drawable(
+    #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
+) -> JsResult<JsValue> {
+    let poly = read_mesh(mesh).map_err(js_error)?;
+    let attributes = read_attributes(mesh).map_err(js_error)?;
+    let drawable = crate::drawable::to_drawable(&poly, &attributes).map_err(js_error)?;
+    let object = Object::new();
+    set_field(&object, "positions", &Float32Array::from(&drawable.positions[..]))?;
+    set_field(&object, "indices", &Uint32Array::from(&drawable.indices[..]))?;
+    set_field(&object, "faceSizes", &Uint32Array::from(&drawable.face_sizes[..]))?;
+    set_field(&object, "triangles", &Uint32Array::from(&drawable.triangles[..]))?;
+    set_field(&object, "origins", &Uint32Array::from(&drawable.origins[..]))?;
+    set_field(&object, "attributes", &channels_object(&drawable.attributes)?)?;
+    Ok(object.into())
 }

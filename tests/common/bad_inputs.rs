@@ -282,7 +282,7 @@ pub fn to_obj(positions: &[f32], indices: &[u32], face_sizes: Option<&[u32]>) ->
 // The catalogue
 
 const NO_CLI_CHANNELS: &str =
-    "the command line reads channels only from OBJ vt lines, which come with face-varying support";
+    "the command line reads channels only from OBJ vt lines, which the obj_vt_* cases cover";
 const JS_ONLY_CHANNEL: &str = "an Attribute has a whole item size and f32 values";
 
 /// A channel of the cube (8 vertices, 24 face corners).
@@ -980,6 +980,39 @@ pub fn catalogue() -> Vec<Case> {
             &["face 0 repeats vertex 0", "doo-sabin needs faces with distinct vertices"],
         )
         .opt("scheme", Str("doo-sabin")),
+        // -- OBJ texture coordinates (the face-varying channel 'uv')
+        Case::new(
+            "obj_vt_missing_on_some_corners",
+            Input::Obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2 3/2\n".into()),
+            Stage::Obj,
+            &["OBJ line 6", "corner '2'", "no texture coordinate", "attribute 'uv'"],
+        ),
+        Case::new(
+            "obj_vt_missing_on_a_later_face",
+            Input::Obj(
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n".into(),
+            ),
+            Stage::Obj,
+            &["OBJ line 7", "corner '2'", "'uv'", "face on line 6 gives them"],
+        ),
+        Case::new(
+            "obj_vt_index_out_of_range",
+            Input::Obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3/5\n".into()),
+            Stage::Obj,
+            &["OBJ line 6", "texture coordinate 5", "'uv'", "only 2 'vt' lines"],
+        ),
+        Case::new(
+            "obj_vt_relative_index_before_the_first",
+            obj_triangle_then("vt 0 0\nf 1/-1 2/-2 3/-1"),
+            Stage::Obj,
+            &["OBJ line 5", "relative texture coordinate index -2", "1 defined so far"],
+        ),
+        Case::new(
+            "obj_vt_coordinate_not_a_number",
+            Input::Obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 x\nf 1/1 2/1 3/1\n".into()),
+            Stage::Obj,
+            &["OBJ line 4", "'x' is not a number"],
+        ),
         // -- attribute channels (the cube: 8 vertices, 24 face corners)
         attribute_case(
             "channel_wrong_length",
@@ -1066,11 +1099,6 @@ pub fn catalogue() -> Vec<Case> {
             &["attributes.uv.indices must be a Uint32Array", "Int32Array"],
         )
         .rust(NA(JS_ONLY_CHANNEL)),
-        attribute_case(
-            "channel_face_varying_not_refined_yet",
-            channel("uv", 2.0, JsField::Float32(vec![0.0; 8]), Some(JsField::Uint32(vec![0; 24]))),
-            &["attribute 'uv'", "face-varying", "not refined by this version"],
-        ),
         Case::new(
             "obj_valid_file_but_loop_on_a_quad",
             Input::Obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n".into()),

@@ -6,8 +6,10 @@
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use subsurf::attributes::Attribute;
 use subsurf::io::{read_obj, read_obj_with_tags};
-use subsurf::{subdivide, subdivide_with_tags, Boundary, HalfEdgeMesh, Options, PolyMesh, Scheme};
+use subsurf::scheme::subdivide_with_attributes;
+use subsurf::{Boundary, FVarLinear, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 pub const RELATIVE_TOLERANCE: f64 = 1e-5;
 
@@ -219,20 +221,42 @@ pub fn base_faces(base_face_sizes: &[u32], levels: u32, loop_scheme: bool) -> Ve
     map
 }
 
-/// Compares one fixture with our result; `Err` says what differs.
-pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, String> {
+/// Our result for a fixture's input, with the input, the refined attribute channels and which
+/// base faces are holes.
+pub struct Ours {
+    pub input: PolyMesh,
+    pub result: PolyMesh,
+    pub channels: Vec<Attribute>,
+    pub holes: Vec<bool>,
+}
+
+/// Runs `scheme` on `entry`'s input as set `set` reads it, with the channels `attributes` makes
+/// from the input's text, under `fvar_linear`.
+pub fn ours(
+    entry: &Entry,
+    scheme: Scheme,
+    set: Set,
+    attributes: &dyn Fn(&str) -> Vec<Attribute>,
+    fvar_linear: FVarLinear,
+) -> Result<Ours, String> {
     let manifest_boundary: Boundary =
         entry.boundary.parse().map_err(|e| format!("manifest boundary: {e}"))?;
     let input_path = root().join(&entry.input);
     let text = std::fs::read_to_string(&input_path)
         .map_err(|e| format!("cannot read {}: {e}", input_path.display()))?;
-    let (input, ours, holes) = match set {
+    let channels = attributes(&text);
+    let run = |mesh: &PolyMesh, options: Options, tags: &Tags| {
+        let options = options.with_fvar_linear(fvar_linear);
+        subdivide_with_attributes(mesh, &channels, &options, tags)
+            .map_err(|e| format!("subdivide failed: {e}"))
+    };
+    match set {
         Set::Untagged | Set::NonManifoldUntagged => {
             let input = read_obj(&text).map_err(|e| format!("{}: {e}", input_path.display()))?;
             let options = Options::new(scheme, entry.level).with_boundary(manifest_boundary);
-            let ours = subdivide(&input, &options).map_err(|e| format!("subdivide failed: {e}"))?;
+            let (result, channels) = run(&input, options, &Tags::default())?;
             let holes = vec![false; input.num_faces()];
-            (input, ours, holes)
+            Ok(Ours { input, result, channels, holes })
         }
         Set::Tagged | Set::NonManifold => {
             let obj =
@@ -244,8 +268,7 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
                 ));
             }
             let options = Options::new(scheme, entry.level).with_boundary(boundary);
-            let ours = subdivide_with_tags(&obj.mesh, &options, &obj.tags)
-                .map_err(|e| format!("subdivide failed: {e}"))?;
+            let (result, channels) = run(&obj.mesh, options, &obj.tags)?;
             // Hole base faces: the tagged ones, and under 'none' those at a boundary vertex.
             let mut holes = vec![false; obj.mesh.num_faces()];
             for &f in &obj.tags.holes {
@@ -275,20 +298,23 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
                     }
                 }
             }
-            (obj.mesh, ours, holes)
+            Ok(Ours { input: obj.mesh, result, channels, holes })
         }
-    };
-    let reference = read_fixture(&set.dir().join(&entry.fixture));
+    }
+}
 
+/// For each of our result's faces (holes left out), OpenSubdiv's fixture face and the rotation
+/// (our corner `m` is its corner `(m + r) mod n`); and how many faces the fixture must have.
+pub fn face_pairs(entry: &Entry, ours: &Ours) -> (Vec<(usize, usize)>, usize) {
     // Loop and midpoint split triangles; the others split into quads.
     let loop_scheme = entry.scheme == "loop" || entry.scheme == "midpoint";
-    let base_of = base_faces(&input.face_sizes, entry.level, loop_scheme);
-    let is_hole = |full: usize| holes[base_of[full]];
+    let base_of = base_faces(&ours.input.face_sizes, entry.level, loop_scheme);
+    let is_hole = |full: usize| ours.holes[base_of[full]];
     // Our triangle split orders children as OpenSubdiv's Loop does: face i is face i.
     let correspondence = if loop_scheme {
         (0..base_of.len()).map(|i| (i, 0)).collect()
     } else {
-        face_correspondence(&input.face_sizes, entry.level)
+        face_correspondence(&ours.input.face_sizes, entry.level)
     };
     assert_eq!(correspondence.len(), base_of.len(), "correspondence covers every face");
     // OpenSubdiv's fixture index of each of its faces (in full numbering) that is not a hole.
@@ -300,6 +326,23 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
             kept += 1;
         }
     }
+    let pairs = (0..base_of.len())
+        .filter(|&full| !is_hole(full))
+        .map(|full| {
+            let (q, r) = correspondence[full];
+            (fixture_index[q], r)
+        })
+        .collect();
+    (pairs, kept)
+}
+
+/// Compares one fixture with our result; `Err` says what differs.
+pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, String> {
+    let no_channels = |_: &str| Vec::new();
+    let run = ours(entry, scheme, set, &no_channels, FVarLinear::default())?;
+    let (pairs, kept) = face_pairs(entry, &run);
+    let (ours, holes) = (run.result, run.holes);
+    let reference = read_fixture(&set.dir().join(&entry.fixture));
 
     let our_faces = our_faces(&ours);
     if our_faces.len() != reference.faces.len()
@@ -314,11 +357,6 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
             reference.faces.len()
         ));
     }
-    let pairs = (0..base_of.len()).filter(|&full| !is_hole(full)).map(|full| {
-        let (q, r) = correspondence[full];
-        (fixture_index[q], r)
-    });
-
     // Vertex map from the face lists.
     const NONE: u32 = u32::MAX;
     let mut to_osd = vec![NONE; ours.num_vertices()];

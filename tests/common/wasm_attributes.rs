@@ -164,14 +164,6 @@ fn bad_channels_are_named_and_the_module_works_on() {
             ]),
             &["'a'", "index 0 is 9", "8 values"],
         ),
-        (
-            object(&[
-                ("array", Float32Array::from(&eight(0.0)[..]).into()),
-                ("itemSize", 1.into()),
-                ("indices", Uint32Array::from(&[0u32; 24][..]).into()),
-            ]),
-            &["'a'", "face-varying", "not refined by this version"],
-        ),
         ("red".into(), &["'a'", "must be an object", "'red'"]),
     ];
     for (bad, parts) in cases {

@@ -596,3 +596,6 @@ mod reuse;
 
 #[path = "wasm_attributes.rs"]
 mod attributes;
+
+#[path = "wasm_fvar.rs"]
+mod fvar;

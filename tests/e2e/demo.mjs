@@ -9,7 +9,9 @@
 // for each scheme, level and mesh equal the counts formulas, that an OBJ opened through the file
 // input is subdivided and a broken one is refused with a message while the last result stays,
 // that an OBJ's crease tags are drawn and honoured and that clicking a cage edge toggles its
-// crease and changes the surface (on a built-in mesh too), that the memory guard refuses a level with a message, that a big job still running is
+// crease and changes the surface (on a built-in mesh too), that meshes with UVs (built-in, or an
+// OBJ with vt) show the checker texture with their vertices split along the seams, that the
+// fvarLinear menu changes the picture, that the memory guard refuses a level with a message, that a big job still running is
 // superseded by a later change while the page stays responsive, that the OBJ download holds the
 // shown mesh, and that mouse and touch move the camera. Screenshots go to artifacts/. Exits
 // non-zero on failure.
@@ -62,6 +64,12 @@ async function analyze(page, png) {
     let mesh = 0;
     let crease = 0;
     let hash = 0;
+    let lumaSum = 0;
+    let lumaSquares = 0;
+    let jumps = 0;
+    let pairs = 0;
+    let blue = 0;
+    let previous = null; // the luma of the pixel to the left, if it is a mesh pixel
     const shades = new Set();
     for (let i = 0; i < data.length; i += 4) {
       const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
@@ -69,13 +77,31 @@ async function analyze(page, png) {
       if (difference > 30) {
         mesh++;
         shades.add(r >> 3);
+        const luma = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        if (b > r) blue++; // the checker's dark squares; the plain outside is orange (red over blue)
+        lumaSum += luma;
+        lumaSquares += luma * luma;
+        if (previous !== null && (i / 4) % image.width !== 0) {
+          jumps += Math.abs(luma - previous);
+          pairs++;
+        }
+        previous = luma;
+      } else {
+        previous = null;
       }
       // The pinks of creased cage edges: red over blue over green. The surface's oranges have
       // blue under green, the cage's blues red under blue.
       if (r > 150 && r >= b && b > g + 40) crease++;
       hash = (hash * 31 + data[i] * 7 + data[i + 1] * 3 + data[i + 2]) | 0;
     }
-    return { total: data.length / 4, mesh, crease, shades: shades.size, hash, background };
+    // The spread of brightness over the mesh, and its mean jump from pixel to pixel: shading
+    // alone varies smoothly, a checker texture adds jumps between light and dark squares.
+    const lumaMean = lumaSum / Math.max(mesh, 1);
+    const lumaStd = Math.sqrt(Math.max(lumaSquares / Math.max(mesh, 1) - lumaMean * lumaMean, 0));
+    return {
+      total: data.length / 4, mesh, crease, shades: shades.size, hash, background, lumaStd, lumaJump: jumps / Math.max(pairs, 1),
+      blueShare: blue / Math.max(mesh, 1),
+    };
   }, png.toString('base64'));
 }
 
@@ -88,6 +114,10 @@ function fail(message) {
 // Catmull-Clark, closed mesh: F' = Σ face sizes, V' = V + E + F; after the first level all quads
 // (F' = 4F, E' = 2E + Σ face sizes). Cube: 6·4^L faces, 6·4^L + 2 vertices (L ≥ 1).
 const cubeCatmullClark = (level) => ({ faces: 6 * 4 ** level, vertices: level === 0 ? 8 : 6 * 4 ** level + 2 });
+// The cube's UV cross cuts it along a spanning tree of 7 edges: at level L the tree has 7·2^L
+// edges and 7·2^L + 1 vertices, the cut-open disk 14·2^L boundary vertices, so drawing splits
+// 7·2^L − 1 more vertices than the surface has.
+const cubeDrawnVertices = (level) => cubeCatmullClark(level).vertices + 7 * 2 ** level - 1;
 // Loop: F' = 4F, V' = V + E. Icosahedron: 20·4^L faces, 10·4^L + 2 vertices.
 const icosahedronLoop = (level) => ({ faces: 20 * 4 ** level, vertices: 10 * 4 ** level + 2 });
 
@@ -190,6 +220,37 @@ async function run() {
     await shows({ level: 3, ...cubeCatmullClark(3) }, 'cube level 3 by keyboard');
     assert.notEqual((await shot('cube-level3')).hash, first.hash, 'the picture changes with the level');
 
+    // ---- UVs: the cube's cross layout, refined with the surface and drawn as a checker
+    const firstData = await shows({ level: 3, uv: true, fvarLinear: 'corners-plus1', drawnVertices: cubeDrawnVertices(3) }, 'cube level 3 with UVs');
+    assert.ok(Number(firstData.drawnVertices) > Number(firstData.vertices), 'UV seams split vertices for drawing');
+    const checkered = await shot('uv-checker');
+    // The surface alone (no cage, no wireframe lines), with and without the texture.
+    await page.uncheck('#cage');
+    await page.uncheck('#wireframe');
+    await afterFrames();
+    const surfaceTextured = await shot('uv-surface');
+    await page.uncheck('#texture');
+    await afterFrames();
+    const surfacePlain = await shot('uv-surface-plain');
+    for (const toggle of ['#texture', '#cage', '#wireframe']) await page.check(toggle);
+    await afterFrames();
+    const percent = (x) => `${(100 * x).toFixed(0)}%`;
+    console.log(`  UV checker: dark (blue) squares cover ${percent(surfaceTextured.blueShare)} of the surface, ${percent(surfacePlain.blueShare)} without the texture; ` +
+      `brightness spread ${surfaceTextured.lumaStd.toFixed(1)} and ${surfacePlain.lumaStd.toFixed(1)}, mean jump between neighbouring pixels ${surfaceTextured.lumaJump.toFixed(2)} and ${surfacePlain.lumaJump.toFixed(2)}`);
+    // A checker is half dark and half light squares; the plain surface is all orange.
+    assert.ok(surfaceTextured.blueShare > 0.25 && surfaceTextured.blueShare < 0.75, `the checker covers the surface (${percent(surfaceTextured.blueShare)} dark)`);
+    assert.ok(surfacePlain.blueShare < 0.02, 'no checker without the texture');
+    assert.ok(surfaceTextured.lumaStd > surfacePlain.lumaStd, 'the squares spread the brightness further than shading alone');
+    assert.ok(surfaceTextured.lumaJump > 1.5 * surfacePlain.lumaJump, 'the squares add sharp edges');
+    assert.equal((await shot('uv-checker-again')).hash, checkered.hash, 'the same picture with everything back on');
+    // The fvarLinear menu: 'all' keeps the UVs linear, a different picture; back to the default.
+    await page.selectOption('#fvar-linear', 'all');
+    await shows({ level: 3, uv: true, fvarLinear: 'all', drawnVertices: cubeDrawnVertices(3) }, "fvarLinear 'all'");
+    assert.notEqual((await shot('uv-linear-all')).hash, checkered.hash, 'linear UVs look different');
+    await page.selectOption('#fvar-linear', 'corners-plus1');
+    await shows({ level: 3, fvarLinear: 'corners-plus1' }, 'fvarLinear back to the default');
+    assert.equal((await shot('uv-default-again')).hash, checkered.hash, 'the default picture again');
+
     // ---- Catmull-Clark on the cube: 6·4^L
     for (const level of [0, 1, 4, 2]) {
       await setLevel(level);
@@ -208,6 +269,11 @@ async function run() {
     await shows({ level: 1, faces: 24 }, 'cube level 1');
     await page.selectOption('#scheme', 'doo-sabin');
     const dooSabin = await shows({ scheme: 'doo-sabin', level: 1, faces: 26, vertices: 24 }, 'Doo-Sabin on the cube');
+    // Doo-Sabin refines the UVs too: its 24 corner points, and 8 more drawn where the faces
+    // across the cross's cut edges and around its cut vertices take one side's values.
+    assert.equal(dooSabin.uv, 'true', 'Doo-Sabin keeps the UVs');
+    assert.equal(dooSabin.drawnVertices, '32');
+    assert.doesNotMatch(await page.locator('#message').textContent(), /UVs not shown/);
     const dooSabinPicture = await shot('doo-sabin-cube');
 
     // ---- Loop on the cube: a scheme/mesh mismatch is refused and the last result stays
@@ -284,7 +350,7 @@ async function run() {
     await page.setInputFiles('#file', { name: 'pyramid.obj', mimeType: 'model/obj', buffer: Buffer.from(pyramid) });
     // Catmull-Clark level 2: level 1 has Σ face sizes = 16 quads and 5 + 8 + 5 = 18 vertices,
     // level 2 has 64 quads and 18 + 32 + 16 = 66 vertices.
-    const opened = await shows({ shape: 'file-1', level: 2, faces: 64, vertices: 66, facesIn: 5, verticesIn: 5 }, 'pyramid.obj');
+    const opened = await shows({ shape: 'file-1', level: 2, faces: 64, vertices: 66, facesIn: 5, verticesIn: 5, uv: false, drawnVertices: 66 }, 'pyramid.obj');
     assert.equal(await page.locator('#shape option:checked').textContent(), 'File: pyramid.obj');
     const pyramidPicture = await shot('pyramid-obj');
 
@@ -312,6 +378,30 @@ async function run() {
     assert.equal(download.suggestedFilename(), 'pyramid-catmull-clark-L1.obj');
     assert.equal(lines.filter((line) => line.startsWith('v ')).length, 18, 'vertices in the downloaded OBJ');
     assert.equal(lines.filter((line) => line.startsWith('f ')).length, 16, 'faces in the downloaded OBJ');
+    assert.equal(lines.filter((line) => line.startsWith('vt ')).length, 0, 'no UVs in, none out');
+
+    // ---- an OBJ with UVs: a unit square in the xy plane whose vt are its x, y. Catmull-Clark
+    // level 1 with the default mode keeps the corner UVs (one face each) and takes midpoints and
+    // the centre, as the positions do on a lone quad (edge-and-corner): the downloaded file's vt
+    // of every corner equals its vertex's x, y, and the checker is drawn.
+    const square = ['v 0 0 0', 'v 1 0 0', 'v 1 1 0', 'v 0 1 0', 'vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1', 'f 1/1 2/2 3/3 4/4', ''].join('\n');
+    await page.setInputFiles('#file', { name: 'square.obj', mimeType: 'model/obj', buffer: Buffer.from(square) });
+    await shows({ shape: 'file-3', level: 1, faces: 4, vertices: 9, uv: true, drawnVertices: 9 }, 'square.obj with vt');
+    const squareShot = await shot('uv-obj');
+    assert.ok(squareShot.blueShare > 0.2, `the OBJ's UVs show the checker (${(100 * squareShot.blueShare).toFixed(0)}% dark squares)`);
+    const [squareDownload] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+    const squarePath = join(artifacts, 'demo-download-uv.obj');
+    await squareDownload.saveAs(squarePath);
+    const squareLines = readFileSync(squarePath, 'utf8').trim().split('\n');
+    const vs = squareLines.filter((line) => line.startsWith('v ')).map((line) => line.split(' ').slice(1).map(Number));
+    const vts = squareLines.filter((line) => line.startsWith('vt ')).map((line) => line.split(' ').slice(1).map(Number));
+    const corners = squareLines.filter((line) => line.startsWith('f ')).flatMap((line) => line.split(' ').slice(1));
+    assert.equal(vts.length, 9, 'vt lines in the downloaded OBJ');
+    assert.equal(corners.length, 16);
+    for (const corner of corners) {
+      const [v, vt] = corner.split('/').map((i) => Number(i) - 1);
+      assert.deepEqual(vts[vt], vs[v].slice(0, 2), `corner ${corner}: its vt is its vertex's x, y`);
+    }
 
     // ---- drag and drop: a tetrahedron dropped on the page (Catmull-Clark level 1: 4 · 3 quads,
     // 4 + 6 + 4 vertices)
@@ -326,7 +416,7 @@ async function run() {
       return shown;
     }, tetrahedron);
     assert.ok(dropZoneShown, 'dragging a file over the page shows the drop zone');
-    await shows({ shape: 'file-3', level: 1, faces: 12, vertices: 14, facesIn: 4, verticesIn: 4 }, 'tetrahedron.obj dropped');
+    await shows({ shape: 'file-4', level: 1, faces: 12, vertices: 14, facesIn: 4, verticesIn: 4 }, 'tetrahedron.obj dropped');
     assert.ok(await page.locator('#drop-zone').isHidden(), 'the drop zone hides after the drop');
     await shot('tetrahedron-dropped');
 
@@ -348,7 +438,7 @@ async function run() {
       fileCreases.push([taggedMesh.tags.creases.edges[2 * i], taggedMesh.tags.creases.edges[2 * i + 1], taggedMesh.tags.creases.sharpness[i]]);
     }
     await page.setInputFiles('#file', { name: 'cube_creases1.obj', mimeType: 'model/obj', buffer: Buffer.from(tagged) });
-    let creased = await shows({ shape: 'file-4', level: 1, faces: 24, vertices: 26, facesIn: 6, creases: 12 }, 'cube_creases1.obj');
+    let creased = await shows({ shape: 'file-5', level: 1, faces: 24, vertices: 26, facesIn: 6, creases: 12 }, 'cube_creases1.obj');
     assert.equal(await page.locator('#crease-count').textContent(), '12 creased edges (all semi-sharp)');
     assert.equal(await page.locator('#boundary').inputValue(), 'edge-only', "the file's interpolateboundary 2 sets the boundary rule");
     assert.deepEqual(await pageCreases(), fileCreases, 'the page holds the creases of the file');
@@ -381,7 +471,7 @@ async function run() {
     assert.ok(target, 'some creased cage edge can be clicked');
     const withoutTarget = fileCreases.filter(([a, b]) => !(a === target.a && b === target.b));
     await page.mouse.click(target.x, target.y);
-    creased = await shows({ shape: 'file-4', creases: 11 }, `click on cage edge ${target.a}-${target.b}`);
+    creased = await shows({ shape: 'file-5', creases: 11 }, `click on cage edge ${target.a}-${target.b}`);
     assert.equal(await page.locator('#crease-count').textContent(), '11 creased edges (all semi-sharp)');
     assert.deepEqual(await pageCreases(), withoutTarget, `edge ${target.a}-${target.b} is smooth after the click`);
     const unclicked = positions;
@@ -392,7 +482,7 @@ async function run() {
 
     // Clicking it again creases it with the chosen sharpness (the slider, 10 by default).
     await page.mouse.click(target.x, target.y);
-    await shows({ shape: 'file-4', creases: 12 }, `second click on cage edge ${target.a}-${target.b}`);
+    await shows({ shape: 'file-5', creases: 12 }, `second click on cage edge ${target.a}-${target.b}`);
     assert.equal(await page.locator('#crease-count').textContent(), '12 creased edges (11 semi-sharp)');
     const reclicked = [...withoutTarget, [...target.edge, 10]];
     assert.deepEqual(await pageCreases(), reclicked);
@@ -403,7 +493,7 @@ async function run() {
 
     // Clear creases: every edge smooth, nothing drawn in crease colours.
     await page.click('#clear-creases');
-    await shows({ shape: 'file-4', creases: 0 }, 'clear creases');
+    await shows({ shape: 'file-5', creases: 0 }, 'clear creases');
     assert.equal(await page.locator('#crease-count').textContent(), '0 creased edges');
     assert.ok(await page.locator('#clear-creases').isDisabled(), 'nothing left to clear');
     assert.deepEqual(await shownPositions(), smoothPositions, 'the surface of the smooth cube');

@@ -133,6 +133,25 @@ for (const [name, api] of [['subsurf/node', node], ['initSync', viaInitSync], ['
     assert.equal(api.subdivide(cube(), { levels: 1 }).faceSizes.length, 24, 'and the module works on');
   });
 
+  // UVs through the glue: readObj's face-varying channel, writeObj's vt lines, and toDrawable
+  // splitting the two vertices of a seam (the square's two triangles each with its own values).
+  check(`${name}: UVs, writeObj and toDrawable`, () => {
+    const text = 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 2 2\nvt 3 3\n' +
+      'f 1/1 2/2 3/3\nf 1/5 3/6 4/4\n';
+    const mesh = api.readObj(text);
+    assert.equal(mesh.attributes.uv.itemSize, 2);
+    assert.deepEqual([...mesh.attributes.uv.indices], [0, 1, 2, 4, 5, 3]);
+    assert.match(api.writeObj(mesh), /\nf 1\/5 3\/6 4\/4\n/);
+    const drawable = api.toDrawable(mesh);
+    assert.deepEqual([...drawable.origins], [0, 0, 1, 2, 2, 3], 'vertices 1 and 3 (0 and 2) split');
+    assert.deepEqual([...drawable.triangles], [0, 2, 3, 1, 4, 5]);
+    assert.deepEqual([...drawable.attributes.uv.array.slice(2, 4)], [2, 2]);
+    assert.equal(drawable.attributes.uv.indices, undefined);
+    assert.deepEqual(api.fvarLinearModes(), ['none', 'corners-only', 'corners-plus1', 'corners-plus2', 'boundaries', 'all']);
+    assert.throws(() => api.subdivide(cube(), { fvarLinear: 'linear' }), /unknown fvarLinear 'linear'/);
+    assert.equal(api.shape('torus').attributes.uv.indices.length, 4 * 288);
+  });
+
   check(`${name}: OBJ round trip`, () => {
     const refined = api.subdivide(cube(), { levels: 1 });
     const again = api.readObj(api.writeObj(refined));
@@ -152,7 +171,12 @@ check('subsurf.d.ts', () => {
     'subdivide(options?: SubdivideOptions, into?: SubdivideResult): SubdivideResult;',
     'setPositions(positions: Float32Array): void;',
     'export function readObj(text: string): ObjMesh;',
-    'export interface ObjMesh extends PolygonMesh { tags: ObjTags; }',
+    'export interface ObjMesh extends PolygonMesh { tags: ObjTags;',
+    'attributes?: { uv: AttributeChannel };',
+    'export function toDrawable(mesh: SubdivideMesh): DrawableMesh;',
+    'export function fvarLinearModes(): FVarLinearMode[];',
+    'export function shape(name: string): ShapeMesh;',
+    'fvarLinear?: FVarLinearMode;',
     'export function writeObj(mesh: SubdivideMesh): string;',
     'export function version(): string;',
     'export interface SubdivideMesh {',
@@ -165,6 +189,8 @@ check('subsurf.d.ts', () => {
   const union = (names) => names.map((n) => `'${n}'`).join(' | ');
   const schemes = `export type SchemeName = ${union(node.schemeNames())};`;
   const boundaries = `export type BoundaryRule = ${union(node.boundaryRules())};`;
+  const modes = `export type FVarLinearMode = ${union(node.fvarLinearModes())};`;
+  assert.ok(dts.includes(modes), `subsurf.d.ts should contain: ${modes}`);
   assert.ok(dts.includes(schemes), `subsurf.d.ts should contain: ${schemes}`);
   assert.ok(dts.includes(boundaries), `subsurf.d.ts should contain: ${boundaries}`);
   assert.ok(dts.includes('export function schemeNames(): SchemeName[];'));

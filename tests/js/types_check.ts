@@ -2,7 +2,7 @@
 // node_modules/subsurf and type-checks it with the pinned `tsc` (strict, no skipLibCheck), so
 // the shipped declarations compile and say what the API accepts. Each `@ts-expect-error` marks a
 // misuse the types must refuse: tsc fails if the line after it type-checks.
-import init, { BaseMesh, readObj, subdivide, type SubdivideResult } from 'subsurf';
+import init, { BaseMesh, readObj, shape, subdivide, toDrawable, type DrawableMesh, type FVarLinearMode, type SubdivideResult } from 'subsurf';
 import { subdivide as subdivideInNode } from 'subsurf/node';
 
 await init();
@@ -30,6 +30,14 @@ base.free();
 
 const obj = readObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
 subdivide(obj, { ...obj.tags, levels: 1 });
+const uvIndices: Uint32Array | undefined = obj.attributes?.uv.indices;
+
+const mode: FVarLinearMode = 'boundaries';
+const textured = shape('cube');
+const refinedUv = subdivide(textured, { levels: 2, fvarLinear: mode });
+const drawable: DrawableMesh = toDrawable(refinedUv);
+const origins: Uint32Array = drawable.origins;
+const uvs: Float32Array | undefined = drawable.attributes.uv?.array;
 
 // @ts-expect-error: an unknown scheme name
 subdivide(cube, { scheme: 'butterfly' });
@@ -45,5 +53,9 @@ base.numFaces = 3;
 subdivide({ ...cube, attributes: { color: { array: [0, 0, 0], itemSize: 3 } } });
 // @ts-expect-error: setAttribute takes a Float32Array
 base.setAttribute('color', [0, 0, 0]);
+// @ts-expect-error: an unknown fvarLinear mode
+subdivide(cube, { fvarLinear: 'linear' });
+// @ts-expect-error: face-varying indices must be a Uint32Array
+subdivide({ ...cube, attributes: { uv: { array: new Float32Array(8), itemSize: 2, indices: [0, 1, 2] } } });
 
-export const used = [triangles, moved, faces, colors];
+export const used = [triangles, moved, faces, colors, uvIndices, origins, uvs];

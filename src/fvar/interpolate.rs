@@ -1,0 +1,204 @@
+//! The values of a refined level (OpenSubdiv's `Far::PrimvarRefiner::InterpolateFaceVarying`):
+//! face points are centroids, a matching value takes the surface's own rule, a seam's edge
+//! point is the midpoint on each side, and a mismatched vertex value stays (a corner) or
+//! follows its crease, blended while semi-sharp features decay.
+
+use super::tag;
+use super::topology::{span_inner_edges, FVarLevel, LevelSharpness, Split};
+use crate::mesh::HalfEdgeMesh;
+use crate::primvar::{FVarSum, RowSum};
+use crate::refine::PrimalSplit;
+use crate::rules::crease::decay;
+use crate::rules::{MixedSplitRules, Weights};
+use std::marker::PhantomData;
+
+/// The rules of a split as the face-varying interpolation calls them: the weights of an edge
+/// point and of a vertex's new value (face points are always centroids).
+pub trait ValueRules {
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights);
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights);
+}
+
+/// The rules `R` of the primal split `S`.
+pub struct PrimalRules<'r, S, R>(&'r R, PhantomData<S>);
+
+impl<'r, S: PrimalSplit<R>, R> PrimalRules<'r, S, R> {
+    pub fn new(rules: &'r R) -> Self {
+        PrimalRules(rules, PhantomData)
+    }
+}
+
+impl<S: PrimalSplit<R>, R> ValueRules for PrimalRules<'_, S, R> {
+    #[inline]
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        S::edge_rule(self.0, mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        S::vertex_rule(self.0, mesh, vertex, w)
+    }
+}
+
+/// The rules of the mixed split (Quad/Triangle).
+pub struct MixedRules<'r, R>(pub &'r R);
+
+impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
+    #[inline]
+    fn edge_point(&self, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights) {
+        self.0.edge_point(mesh, edge, w)
+    }
+
+    #[inline]
+    fn vertex_point(&self, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights) {
+        self.0.vertex_point(mesh, vertex, w)
+    }
+}
+
+/// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
+/// on `split` with `rules`. With `linear` (mode `all`, or a linear scheme), every
+/// value is interpolated linearly. `sharp` is the parent level's sharpness.
+pub fn interpolate<F: ValueRules>(
+    mesh: &HalfEdgeMesh,
+    split: Split,
+    rules: &F,
+    parent: &FVarLevel,
+    child: &mut FVarLevel,
+    linear: bool,
+    sharp: &LevelSharpness,
+) {
+    let width = parent.width;
+    let (nv, nf) = (mesh.num_vertices(), mesh.num_cells());
+    let mut out = vec![0.0f32; child.num_values() * width];
+    let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
+
+    // Every cell's centroid when the rules may weight it (the mixed split's rules read those of
+    // triangles too); the child has those of the cells that get a face point.
+    let (face_point_of, face_points) = split.face_points(mesh);
+    let mut face_values = Vec::new();
+    if split != Split::Triangle {
+        face_values = vec![0.0f32; nf * width];
+        for (c, face) in face_values.chunks_exact_mut(width.max(1)).enumerate() {
+            let range = mesh.cell_range(c);
+            let scale = 1.0 / range.len() as f32;
+            for h in range {
+                RowSum::add(face, row(parent.corner_values[h]), 1.0);
+            }
+            face.iter_mut().for_each(|x| *x *= scale);
+            if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
+                let at = (nv + k as usize) * width;
+                out[at..at + width].copy_from_slice(face);
+            }
+        }
+    }
+    let edge_base = nv + face_points;
+    let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, &face_values);
+    let midpoint = |out: &mut [f32], a: u32, b: u32| {
+        for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
+            *o = 0.5 * (x + y);
+        }
+    };
+    let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
+
+    for e in 0..mesh.num_edges() as u32 {
+        let [a, b] = mesh.edge_vertices[e as usize];
+        let hs = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
+        let cv = edge_base as u32 + e;
+        if a == b {
+            // An edge from a vertex to itself (a face that repeats a vertex): infinitely sharp,
+            // between the values of its face's two corners at the vertex.
+            let x = hs[0];
+            let (from, to) = (parent.corner_values[x as usize], mesh.next_in_cell(x));
+            midpoint(&mut out[slot(cv)], from, parent.corner_values[to as usize]);
+            continue;
+        }
+        if child.tags[cv as usize] & tag::MISMATCH == 0 {
+            let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
+            if linear {
+                midpoint(&mut out[slot(cv)], ends[0].1, ends[1].1);
+            } else {
+                sum.eval_into(&mut out[slot(cv)], ends, |w| rules.edge_point(mesh, e, w));
+            }
+            continue;
+        }
+        for (j, &x) in hs.iter().take(child.count(cv) as usize).enumerate() {
+            let (va, vb) = (parent.value_at(mesh, x, a), parent.value_at(mesh, x, b));
+            midpoint(&mut out[slot(child.value(cv, j as u32))], va, vb);
+        }
+    }
+
+    for v in 0..nv as u32 {
+        if parent.tags[v as usize] & tag::MISMATCH == 0 {
+            if linear || mesh.out_half_edges(v).is_empty() {
+                out[slot(v)].copy_from_slice(row(v));
+            } else {
+                sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.vertex_point(mesh, v, w));
+            }
+            continue;
+        }
+        let count = parent.count(v);
+        for j in 0..count {
+            let (p, c) = (parent.value(v, j), child.value(v, j));
+            let child_tag = child.tags[c as usize];
+            if linear || child_tag & tag::CREASE == 0 {
+                out[slot(c)].copy_from_slice(row(p));
+                continue;
+            }
+            // A crease, or a corner turning into one: its ends are across the span's two
+            // bounding edges.
+            let [start, end] = parent.crease_ends(p);
+            let e0 = parent.corner_values[mesh.next_in_cell(start) as usize];
+            let e1 = parent.corner_values[mesh.prev_in_cell(end) as usize];
+            let parent_tag = parent.tags[p as usize];
+            let (mut vertex_weight, mut end_weight) = (0.75f32, 0.125f32);
+            if parent_tag & tag::SEMI_SHARP != 0 {
+                // A value sharpened by the other one takes that one's transition.
+                let source = if parent_tag & tag::DEP_SHARP != 0 {
+                    parent.value(v, 1 - j.min(1))
+                } else {
+                    p
+                };
+                let corner = fractional_weight(mesh, parent, sharp, v, source);
+                let crease = 1.0 - corner;
+                vertex_weight = crease * 0.75 + corner;
+                end_weight = crease * 0.125;
+            }
+            let target = &mut out[slot(c)];
+            target.fill(0.0);
+            RowSum::add(target, row(e0), end_weight);
+            RowSum::add(target, row(e1), end_weight);
+            RowSum::add(target, row(p), vertex_weight);
+        }
+    }
+    child.values = out;
+}
+
+/// How much of the corner rule a value keeps as its span's sharpness decays to smooth: the mean
+/// sharpness of what turns smooth at this level (the vertex, the edges inside the span), at
+/// most 1 (OpenSubdiv's `Crease::ComputeFractionalWeightAtVertex` over the span).
+fn fractional_weight(
+    mesh: &HalfEdgeMesh,
+    level: &FVarLevel,
+    sharp: &LevelSharpness,
+    v: u32,
+    value: u32,
+) -> f32 {
+    let (mut sum, mut count) = (0.0f32, 0u32);
+    let vertex = sharp.vertex(mesh, v);
+    if vertex > 0.0 && decay(vertex) <= 0.0 {
+        sum += vertex;
+        count += 1;
+    }
+    span_inner_edges(mesh, level.crease_ends(value), |e| {
+        let s = sharp.edge(mesh, e);
+        if s > 0.0 && sharp.child_edge(mesh, e, v) <= 0.0 {
+            sum += s;
+            count += 1;
+        }
+    });
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f32).min(1.0)
+    }
+}

@@ -1,0 +1,182 @@
+//! Face-varying channels (UVs split at seams): the value topology of each level and the
+//! interpolation of its values, as OpenSubdiv 3 defines them (`Vtr::FVarLevel`,
+//! `Vtr::FVarRefinement`, `Far::PrimvarRefiner::InterpolateFaceVarying`), read from its sources
+//! and written anew over our half-edge levels.
+//!
+//! # Values and seams
+//!
+//! A face-varying channel gives each face corner a value index, so a vertex may carry several
+//! values ("siblings"). An edge whose faces disagree on the value at either end is
+//! **discontinuous** (a seam): the channel has its own boundary there while the surface stays
+//! smooth across it. A vertex **mismatches** when the channel's neighbourhood differs from the
+//! surface's: a seam touches it, or a boundary rule of the mode applies to it (below). A vertex
+//! that matches has one value, and that value takes exactly the surface's weights
+//! ([`crate::rules`]), with each neighbour read through the corner it is seen from.
+//!
+//! # The modes ([`FVarLinear`])
+//!
+//! Each value of a mismatched vertex covers a *span*: a run of consecutive faces around the
+//! vertex with that value, bounded by seams or boundary edges. A value is either a **corner**
+//! (it stays) or a **crease** (`3/4 v + 1/8 (a + b)`, `a` and `b` across the span's two
+//! bounding edges). It is a corner when
+//!
+//! - the mode is `boundaries` or `all` (every boundary value is linear), the vertex is
+//!   infinitely sharp or non-manifold, or, under `corners-plus1`/`corners-plus2`, it has more
+//!   than two values; darts (one value, one seam ending here) too under `corners-plus2`,
+//!   `boundaries` and `all`;
+//! - under `corners-plus1`/`corners-plus2` with two values, either span holds an infinitely
+//!   sharp edge or a seam, or (`corners-plus2`) is a single face: then both are corners;
+//! - its span holds an infinitely sharp edge, is a single face (every mode but `none`), or is
+//!   not one run of faces (a value met twice around the vertex).
+//!
+//! A value whose span holds semi-sharp edges, or whose vertex is semi-sharp, is a corner until
+//! that sharpness has decayed, then a crease; at the level where it changes, it blends the two
+//! by OpenSubdiv's fractional weight of the edges inside its span. Under
+//! `corners-plus1`/`corners-plus2`, when only one of two values has such edges, the other
+//! follows its sharpness ("dependent sharpness"). A mesh boundary vertex with one face is a
+//! corner unless the mode is `none` or the surface's own boundary rule makes it one already
+//! (`edge-and-corner`).
+//!
+//! # Levels
+//!
+//! The first level's topology is analysed from the indices ([`FVarLevel::base`]); refined
+//! levels inherit it ([`FVarLevel::child_topology`]): each value of an old vertex has one child
+//! value, a face point has one, and the edge point of a seam one per face of the edge (each the
+//! midpoint of that side's values); a child keeps its parent value's tag, halves of a seam are
+//! seams, and inner edges are not. `all` and the bilinear and midpoint schemes interpolate every
+//! value linearly (face points are centroids, edge points midpoints, old values stay).
+
+mod doo_sabin;
+mod interpolate;
+mod siblings;
+mod sqrt3;
+mod topology;
+
+pub use interpolate::{interpolate, MixedRules, PrimalRules, ValueRules};
+pub use topology::{FVarLevel, LevelSharpness, Split};
+
+use crate::options::FVarLinear;
+
+/// The value tag bits (OpenSubdiv's `FVarLevel::ValueTag`, the members interpolation reads).
+pub(crate) mod tag {
+    /// The value's neighbourhood differs from the surface's: it follows the face-varying rules.
+    pub const MISMATCH: u8 = 1;
+    /// A crease value (`3/4 v + 1/8 (a + b)`); without it a mismatched value is a corner.
+    pub const CREASE: u8 = 2;
+    /// A corner until its span's semi-sharp edges (or its vertex) decay, then a crease.
+    pub const SEMI_SHARP: u8 = 4;
+    /// Semi-sharp because the vertex's other value is.
+    pub const DEP_SHARP: u8 = 8;
+}
+
+/// The edge tag bits (OpenSubdiv's `FVarLevel::ETag`).
+pub(crate) mod edge_tag {
+    /// A seam: the edge's faces disagree on the value at an end.
+    pub const MISMATCH: u8 = 1;
+    /// Linear: the edge point's values are corners at the next level.
+    pub const LINEAR: u8 = 2;
+}
+
+/// What a mode decides, as OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues` reads it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ModeRules {
+    /// `all`: every value is interpolated linearly.
+    pub linear: bool,
+    /// `boundaries` and `all`: every boundary value is a corner.
+    pub linear_boundaries: bool,
+    /// `corners-plus1` and `corners-plus2`: one of two values may sharpen the other.
+    pub dependent_sharpness: bool,
+    /// Every mode but `none`: a value of one face is a corner.
+    pub corners_sharp: bool,
+    /// `corners-plus2`: a value of one face makes both values corners.
+    pub sharpen_both_if_one_corner: bool,
+    /// `corners-plus2`, `boundaries`, `all`: a dart's value is a corner.
+    pub sharpen_darts: bool,
+}
+
+impl ModeRules {
+    pub fn new(mode: FVarLinear) -> Self {
+        let linear_boundaries = matches!(mode, FVarLinear::Boundaries | FVarLinear::All);
+        let plus2 = mode == FVarLinear::CornersPlus2;
+        ModeRules {
+            linear: mode == FVarLinear::All,
+            linear_boundaries,
+            dependent_sharpness: matches!(
+                mode,
+                FVarLinear::CornersPlus1 | FVarLinear::CornersPlus2
+            ),
+            corners_sharp: mode != FVarLinear::None,
+            sharpen_both_if_one_corner: plus2,
+            sharpen_darts: plus2 || linear_boundaries,
+        }
+    }
+
+    /// True when a crease value keeps the ends of its crease (every mode whose boundaries are
+    /// smooth).
+    pub fn smooth_boundaries(&self) -> bool {
+        !self.linear_boundaries
+    }
+}
+
+use crate::mesh::HalfEdgeMesh;
+
+/// A face-varying channel between levels (several channels with the same indices travel as
+/// one, side by side).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FVarChannel {
+    pub level: FVarLevel,
+    /// False until a primal level analysed the topology: `level.values` then holds values as
+    /// given and `level.corner_values` the indices as given.
+    pub analysed: bool,
+}
+
+impl FVarChannel {
+    /// A channel of `width` floats per value, one index per face corner.
+    pub fn new(width: usize, values: Vec<f32>, indices: Vec<u32>) -> Self {
+        let level = FVarLevel { width, values, corner_values: indices, ..FVarLevel::default() };
+        FVarChannel { level, analysed: false }
+    }
+
+    /// Refines the channel with one level of `split` of `mesh` with `rules` (linear ones when
+    /// `linear`), whose sharpness is `sharp`.
+    pub fn refine(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        split: Split,
+        rules: &impl ValueRules,
+        linear: bool,
+        sharp: &LevelSharpness,
+        mode: FVarLinear,
+    ) {
+        let mode = ModeRules::new(mode);
+        if !self.analysed {
+            let given = std::mem::take(&mut self.level);
+            self.level = FVarLevel::base(
+                mesh,
+                &given.values,
+                given.width,
+                &given.corner_values,
+                sharp,
+                mode,
+            );
+            self.analysed = true;
+        }
+        let mut child = self.level.child_topology(mesh, split, sharp, mode);
+        let (parent, linear) = (&self.level, linear || mode.linear);
+        interpolate(mesh, split, rules, parent, &mut child, linear, sharp);
+        self.level = child;
+    }
+
+    /// Keeps the corners of the faces `keep` says, faces of `size` corners.
+    pub fn keep_faces(&mut self, size: usize, keep: impl Fn(usize) -> bool) {
+        let corners = &mut self.level.corner_values;
+        let mut kept = 0usize;
+        for f in 0..corners.len() / size {
+            if keep(f) {
+                corners.copy_within(f * size..(f + 1) * size, kept * size);
+                kept += 1;
+            }
+        }
+        corners.truncate(kept * size);
+    }
+}
