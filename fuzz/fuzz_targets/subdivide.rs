@@ -4,11 +4,11 @@
 //! each other or far apart. A call either returns a valid mesh whose faces never repeat a vertex,
 //! no larger than predicted and inside the input's bounding box, or refuses with `Unsupported`
 //! or `TooLarge` (Doo-Sabin, √3 and Quad/Triangle refuse a face that repeats a vertex; the
-//! primal schemes take it); never a panic and never an invalid intermediate mesh. The same call with attribute
-//! channels: the x coordinate as a channel stays the x coordinate of every refined vertex and
-//! the positions do not change; a fuzzed extra channel (any size, values or indices, so
-//! face-varying with any seams, in any face-varying mode) is refined, its indices parallel to
-//! the result's and in range, or refused with `InvalidAttribute` or `Unsupported`.
+//! primal schemes take it); never a panic and never an invalid intermediate mesh. The same
+//! call with attribute channels: the x coordinate as a channel stays the x coordinate of every
+//! refined vertex and the positions do not change; a fuzzed extra channel (any size, values or
+//! indices, so face-varying with any seams, in any face-varying mode) is refined, its indices
+//! parallel to the result's and in range, or refused with `InvalidAttribute` or `Unsupported`.
 #![no_main]
 
 use arbitrary::Arbitrary;
