@@ -26,6 +26,7 @@ pub mod drawable;
 pub mod error;
 pub mod fvar;
 pub mod io;
+pub mod limit;
 pub mod mesh;
 pub mod options;
 pub mod predict;

@@ -16,6 +16,9 @@ use std::borrow::Cow;
 pub struct Refined<'a> {
     form: Form<'a>,
     attributes: Vec<Attribute>,
+    /// The limit tangents and normals, when the limit was asked for
+    /// ([`crate::scheme::subdivide_limit`]); the positions are then the limit positions.
+    limit: Option<Box<[Vec<f32>; 3]>>,
 }
 
 enum Form<'a> {
@@ -30,7 +33,7 @@ enum Form<'a> {
 impl<'a> Refined<'a> {
     /// A result whose faces are listed.
     pub(crate) fn poly(poly: PolyMesh, attributes: Vec<Attribute>) -> Self {
-        Refined { form: Form::Poly(poly), attributes }
+        Refined { form: Form::Poly(poly), attributes, limit: None }
     }
 
     /// A result whose faces are the implicit quads of one split of `parent`.
@@ -39,7 +42,40 @@ impl<'a> Refined<'a> {
         parent: Cow<'a, HalfEdgeMesh>,
         attributes: Vec<Attribute>,
     ) -> Self {
-        Refined { form: Form::Quads { positions, parent: Box::new(parent) }, attributes }
+        Refined {
+            form: Form::Quads { positions, parent: Box::new(parent) },
+            attributes,
+            limit: None,
+        }
+    }
+
+    /// A result at the limit: `poly`'s positions are limit positions, with the two limit
+    /// tangents and the unit normal of each vertex (three floats each).
+    pub(crate) fn limit(
+        poly: PolyMesh,
+        attributes: Vec<Attribute>,
+        [first, second]: [Vec<f32>; 2],
+        normals: Vec<f32>,
+    ) -> Self {
+        Refined {
+            form: Form::Poly(poly),
+            attributes,
+            limit: Some(Box::new([first, second, normals])),
+        }
+    }
+
+    /// The limit tangents (OpenSubdiv's `tan1` and `tan2`, three floats per vertex) when the
+    /// result is at the limit ([`crate::scheme::subdivide_limit`]).
+    pub fn tangents(&self) -> Option<[&[f32]; 2]> {
+        self.limit.as_deref().map(|[a, b, _]| [&a[..], &b[..]])
+    }
+
+    /// The unit limit normals (three floats per vertex; zero where the tangents are degenerate)
+    /// when the result is at the limit: `tangents[0] × tangents[1]`, normalised, which points
+    /// to the side from which the faces are wound counter-clockwise (outward on a closed mesh
+    /// wound so, as the OBJ convention has it).
+    pub fn normals(&self) -> Option<&[f32]> {
+        self.limit.as_deref().map(|[_, _, n]| &n[..])
     }
 
     /// The refined attribute channels, in the order they were given.
@@ -49,8 +85,8 @@ impl<'a> Refined<'a> {
 
     /// The flat arrays and the attribute channels.
     pub fn into_parts(self) -> (PolyMesh, Vec<Attribute>) {
-        let Refined { form, attributes } = self;
-        (Refined { form, attributes: Vec::new() }.into_poly(), attributes)
+        let Refined { form, attributes, .. } = self;
+        (Refined { form, attributes: Vec::new(), limit: None }.into_poly(), attributes)
     }
 
     pub fn positions(&self) -> &[f32] {

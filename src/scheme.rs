@@ -15,6 +15,7 @@ use crate::primvar::Rows;
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
+use crate::rules::limit::LimitRules;
 use crate::rules::Sqrt3;
 use crate::rules::{
     Bilinear, CatmullClark, CreasedCatmullClark, CreasedLoop, DooSabin, LevelTags, Loop, Midpoint,
@@ -113,7 +114,15 @@ pub fn subdivide_mesh_refined(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_levels(Cow::Owned(base), options, tags, Rows::default(), Vec::new(), no_attributes)
+    refine_levels(
+        Cow::Owned(base),
+        options,
+        tags,
+        Rows::default(),
+        Vec::new(),
+        no_attributes,
+        false,
+    )
 }
 
 /// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
@@ -124,7 +133,15 @@ pub fn subdivide_mesh_borrowed<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_levels(Cow::Borrowed(base), options, tags, Rows::default(), Vec::new(), no_attributes)
+    refine_levels(
+        Cow::Borrowed(base),
+        options,
+        tags,
+        Rows::default(),
+        Vec::new(),
+        no_attributes,
+        false,
+    )
 }
 
 /// Subdivides `mesh` with its attribute channels (see [`Attribute`]): vertex-varying channels
@@ -147,7 +164,7 @@ pub fn subdivide_refined_with(
     tags: &Tags,
 ) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, false)
 }
 
 /// [`subdivide_mesh_refined`] with attribute channels.
@@ -157,7 +174,7 @@ pub fn subdivide_mesh_refined_with(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, false)
 }
 
 /// [`subdivide_mesh_borrowed`] with attribute channels.
@@ -167,7 +184,7 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags)
+    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags, false)
 }
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
@@ -186,24 +203,115 @@ fn refine_with_attributes<'a>(
     attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
+    limit: bool,
 ) -> Result<Refined<'a>> {
     check_attributes(attributes, &base)?;
     if attributes.is_empty() {
         // The positions-only instance of the level loop, as the plain calls use: in the one
         // that carries rows, the wasm build refined positions 27 % slower (other inlining).
-        return refine_levels(base, options, tags, Rows::default(), Vec::new(), no_attributes);
+        return refine_levels(
+            base,
+            options,
+            tags,
+            Rows::default(),
+            Vec::new(),
+            no_attributes,
+            limit,
+        );
     }
     let (rows, layout) = attributes::pack(attributes, base.num_vertices());
     let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
     let count = attributes.len();
-    refine_levels(base, options, tags, rows, fvar, |rows, fvar| {
-        attributes::unpack_all(rows, &layout, fvar, &fvar_layout, count)
-    })
+    let finish = |rows, fvar| attributes::unpack_all(rows, &layout, fvar, &fvar_layout, count);
+    refine_levels(base, options, tags, rows, fvar, finish, limit)
+}
+
+/// Subdivides `mesh` as `options` says and evaluates the last level at the limit (OpenSubdiv's
+/// `PrimvarRefiner::Limit`): the result's positions are the limit positions of the last level's
+/// vertices, [`Refined::tangents`] and [`Refined::normals`] their limit tangents and unit
+/// normals (see [`crate::rules::limit`]). The faces are those of [`subdivide_with_tags`]. The
+/// last level must be Catmull-Clark or Loop (Quad/Triangle on triangles is Loop), and the
+/// boundary not `average`; otherwise an [`Error::Unsupported`] before any work.
+pub fn subdivide_limit(
+    mesh: &PolyMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'static>> {
+    subdivide_limit_with(mesh, &[], options, tags)
+}
+
+/// [`subdivide_limit`] with attribute channels: vertex-varying channels take the limit position
+/// masks too; face-varying channels are those of the last level.
+pub fn subdivide_limit_with(
+    mesh: &PolyMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'static>> {
+    let base = HalfEdgeMesh::from_poly(mesh)?;
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, true)
+}
+
+/// [`subdivide_limit`] of an already built mesh, which is left to the caller.
+pub fn subdivide_mesh_limit<'a>(
+    base: &'a HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Refined<'a>> {
+    refine_with_attributes(Cow::Borrowed(base), &[], options, tags, true)
+}
+
+/// Refuses a limit of `options` that is not defined, before any work.
+fn check_limit(options: &Options) -> Result<()> {
+    match options.schemes.last() {
+        None => {
+            return Err(Error::Unsupported(
+                "the limit needs at least one level of catmull-clark or loop".to_string(),
+            ))
+        }
+        Some(Scheme::CatmullClark | Scheme::Loop | Scheme::QuadTriangle) => {}
+        Some(&scheme) => {
+            return Err(Error::Unsupported(format!(
+                "the limit is defined for a last level of catmull-clark or loop, not {scheme}"
+            )))
+        }
+    }
+    if options.boundary == Boundary::Average {
+        return Err(Error::Unsupported(
+            "the limit is defined for boundary 'edge-and-corner', 'edge-only', 'none' and 'fixed', not 'average'"
+                .to_string(),
+        ));
+    }
+    Ok(())
+}
+
+/// Leaves out the faces of `poly` that `tags` makes holes, with their face-varying corners.
+fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) -> PolyMesh {
+    let sizes = std::mem::take(&mut poly.face_sizes);
+    let indices = std::mem::take(&mut poly.indices);
+    let (mut start, mut kept) = (0usize, Vec::with_capacity(indices.len()));
+    let mut kept_corners = vec![Vec::with_capacity(indices.len()); fvar.len()];
+    for (f, &n) in sizes.iter().enumerate() {
+        let corners = start..start + n as usize;
+        if !tags.is_hole(f as u32) {
+            kept.extend_from_slice(&indices[corners.clone()]);
+            for (out, channel) in kept_corners.iter_mut().zip(fvar.iter()) {
+                out.extend_from_slice(&channel.level.corner_values[corners.clone()]);
+            }
+            poly.face_sizes.push(n);
+        }
+        start = corners.end;
+    }
+    poly.indices = kept;
+    for (channel, corners) in fvar.iter_mut().zip(kept_corners) {
+        channel.level.corner_values = corners;
+    }
+    poly
 }
 
 /// Runs every level of `options` on `base`, with the vertex-varying `rows` and the face-varying
 /// channels `fvar` alongside; `finish` turns the last level's rows and channels back into
-/// attribute channels.
+/// attribute channels. With `limit`, the last level is evaluated at the limit.
 fn refine_levels<'a>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
@@ -211,7 +319,11 @@ fn refine_levels<'a>(
     mut rows: Rows,
     mut fvar: Vec<FVarChannel>,
     finish: impl FnOnce(Rows, Vec<FVarChannel>) -> Vec<Attribute>,
+    limit: bool,
 ) -> Result<Refined<'a>> {
+    if limit {
+        check_limit(options)?;
+    }
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -231,30 +343,12 @@ fn refine_levels<'a>(
             return Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)));
         }
         let level_tags = LevelTags::base_with_edges(&mesh, tags, &crease_edges, false);
-        let mut poly = mesh.to_poly();
-        let sizes = std::mem::take(&mut poly.face_sizes);
-        let indices = std::mem::take(&mut poly.indices);
-        let (mut start, mut kept) = (0usize, Vec::with_capacity(indices.len()));
-        let mut kept_corners = vec![Vec::with_capacity(indices.len()); fvar.len()];
-        for (f, &n) in sizes.iter().enumerate() {
-            let corners = start..start + n as usize;
-            if !level_tags.is_hole(f as u32) {
-                kept.extend_from_slice(&indices[corners.clone()]);
-                for (out, channel) in kept_corners.iter_mut().zip(&fvar) {
-                    out.extend_from_slice(&channel.level.corner_values[corners.clone()]);
-                }
-                poly.face_sizes.push(n);
-            }
-            start = corners.end;
-        }
-        poly.indices = kept;
-        for (channel, corners) in fvar.iter_mut().zip(kept_corners) {
-            channel.level.corner_values = corners;
-        }
+        let poly = drop_holes(mesh.to_poly(), &level_tags, &mut fvar);
         return Ok(Refined::poly(poly, finish(rows, fvar)));
     }
     let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
+    let mut last_scheme = Scheme::CatmullClark;
     for (level, &scheme) in options.schemes.iter().enumerate() {
         check_scheme(&mesh, scheme, boundary, level)?;
         // Quad/Triangle is Loop on triangles (Stam & Loop's rules reduce to Loop's there; see
@@ -267,7 +361,9 @@ fn refine_levels<'a>(
             s => s,
         };
         let scheme = on_triangles(scheme);
-        let last = level + 1 == levels;
+        last_scheme = scheme;
+        // The limit is taken on the last level's mesh, which is therefore built as any other.
+        let last = level + 1 == levels && !limit;
         if level_tags.is_none() && scheme.supports_tags() {
             // The tagged path: for the user's tags (base level), and for what only the crease
             // rules handle: boundary 'none', non-manifold input, smooth triangles. Decided for
@@ -404,6 +500,21 @@ fn refine_levels<'a>(
                 return Ok(Refined::quads(positions, parent, finish(rows, fvar)));
             }
         };
+    }
+    if limit {
+        if !matches!(last_scheme, Scheme::CatmullClark | Scheme::Loop) {
+            return Err(Error::Unsupported(format!(
+                "level {levels}: the limit is defined for catmull-clark and loop; quad-triangle on a mesh with quads has no limit masks"
+            )));
+        }
+        let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref() };
+        let (frame, rows) = crate::limit::evaluate(&mesh, &rules, &rows);
+        let mut poly = mesh.to_poly();
+        poly.positions = frame.positions;
+        if let Some(tags) = level_tags.as_ref().filter(|t| t.has_holes()) {
+            poly = drop_holes(poly, tags, &mut fvar);
+        }
+        return Ok(Refined::limit(poly, finish(rows, fvar), frame.tangents, frame.normals));
     }
     Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)))
 }

@@ -11,6 +11,7 @@
 mod catmull_clark;
 pub mod crease;
 mod doo_sabin;
+pub mod limit;
 mod linear;
 mod loop_subdivision;
 mod quad_triangle;

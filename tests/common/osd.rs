@@ -336,6 +336,74 @@ pub fn face_pairs(entry: &Entry, ours: &Ours) -> (Vec<(usize, usize)>, usize) {
     (pairs, kept)
 }
 
+/// The vertex map our result -> OpenSubdiv's fixture, read off the face lists (`pairs` from
+/// [`face_pairs`]); `NO_VERTEX` for our vertices that only hole faces use.
+pub fn vertex_map(
+    ours: &PolyMesh,
+    reference: &RefMesh,
+    pairs: Vec<(usize, usize)>,
+    holes: &[bool],
+) -> Result<Vec<u32>, String> {
+    let our_faces = our_faces(ours);
+    let mut to_osd = vec![NO_VERTEX; ours.num_vertices()];
+    let mut from_osd = vec![NO_VERTEX; reference.positions.len()];
+    for (i, (face, (q, r))) in our_faces.iter().zip(pairs).enumerate() {
+        let theirs = &reference.faces[q];
+        if theirs.len() != face.len() {
+            return Err(format!(
+                "our face {i} has {} vertices, OpenSubdiv's face {q} has {}",
+                face.len(),
+                theirs.len()
+            ));
+        }
+        for (m, &v) in face.iter().enumerate() {
+            let w = theirs[(m + r) % face.len()];
+            if to_osd[v as usize] == NO_VERTEX && from_osd[w as usize] == NO_VERTEX {
+                to_osd[v as usize] = w;
+                from_osd[w as usize] = v;
+            } else if to_osd[v as usize] != w || from_osd[w as usize] != v {
+                return Err(format!(
+                    "vertex map is not a bijection: our face {i} corner {m} pairs our vertex {v} with OpenSubdiv \
+                     vertex {w} (face {q}, rotation {r}), but our {v} was paired with {} and their {w} with {}",
+                    to_osd[v as usize] as i64, from_osd[w as usize] as i64
+                ));
+            }
+        }
+    }
+    let any_holes = holes.iter().any(|&h| h);
+    if any_holes {
+        // Vertices only hole faces use cannot be paired: their numbers must agree.
+        let ours_unpaired = to_osd.iter().filter(|&&w| w == NO_VERTEX).count();
+        let theirs_unpaired = from_osd.iter().filter(|&&v| v == NO_VERTEX).count();
+        if ours_unpaired != theirs_unpaired {
+            return Err(format!(
+                "{ours_unpaired} of our vertices are in no face, but {theirs_unpaired} of OpenSubdiv's"
+            ));
+        }
+    } else {
+        // Vertices that no face uses: isolated in both, same index.
+        for v in 0..to_osd.len() {
+            if to_osd[v] == NO_VERTEX {
+                if from_osd[v] != NO_VERTEX {
+                    return Err(format!(
+                        "our vertex {v} is in no face, but OpenSubdiv's vertex {v} is"
+                    ));
+                }
+                to_osd[v] = v as u32;
+                from_osd[v] = v as u32;
+            }
+        }
+        if let Some(w) = from_osd.iter().position(|&v| v == NO_VERTEX) {
+            return Err(format!("OpenSubdiv vertex {w} has no counterpart"));
+        }
+    }
+
+    Ok(to_osd)
+}
+
+/// Our vertices that [`vertex_map`] cannot pair.
+pub const NO_VERTEX: u32 = u32::MAX;
+
 /// Compares one fixture with our result; `Err` says what differs.
 pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, String> {
     let no_channels = |_: &str| Vec::new();
@@ -357,61 +425,7 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
             reference.faces.len()
         ));
     }
-    // Vertex map from the face lists.
-    const NONE: u32 = u32::MAX;
-    let mut to_osd = vec![NONE; ours.num_vertices()];
-    let mut from_osd = vec![NONE; reference.positions.len()];
-    for (i, (face, (q, r))) in our_faces.iter().zip(pairs).enumerate() {
-        let theirs = &reference.faces[q];
-        if theirs.len() != face.len() {
-            return Err(format!(
-                "our face {i} has {} vertices, OpenSubdiv's face {q} has {}",
-                face.len(),
-                theirs.len()
-            ));
-        }
-        for (m, &v) in face.iter().enumerate() {
-            let w = theirs[(m + r) % face.len()];
-            if to_osd[v as usize] == NONE && from_osd[w as usize] == NONE {
-                to_osd[v as usize] = w;
-                from_osd[w as usize] = v;
-            } else if to_osd[v as usize] != w || from_osd[w as usize] != v {
-                return Err(format!(
-                    "vertex map is not a bijection: our face {i} corner {m} pairs our vertex {v} with OpenSubdiv \
-                     vertex {w} (face {q}, rotation {r}), but our {v} was paired with {} and their {w} with {}",
-                    to_osd[v as usize] as i64, from_osd[w as usize] as i64
-                ));
-            }
-        }
-    }
-    let any_holes = holes.iter().any(|&h| h);
-    if any_holes {
-        // Vertices only hole faces use cannot be paired: their numbers must agree.
-        let ours_unpaired = to_osd.iter().filter(|&&w| w == NONE).count();
-        let theirs_unpaired = from_osd.iter().filter(|&&v| v == NONE).count();
-        if ours_unpaired != theirs_unpaired {
-            return Err(format!(
-                "{ours_unpaired} of our vertices are in no face, but {theirs_unpaired} of OpenSubdiv's"
-            ));
-        }
-    } else {
-        // Vertices that no face uses: isolated in both, same index.
-        for v in 0..to_osd.len() {
-            if to_osd[v] == NONE {
-                if from_osd[v] != NONE {
-                    return Err(format!(
-                        "our vertex {v} is in no face, but OpenSubdiv's vertex {v} is"
-                    ));
-                }
-                to_osd[v] = v as u32;
-                from_osd[v] = v as u32;
-            }
-        }
-        if let Some(w) = from_osd.iter().position(|&v| v == NONE) {
-            return Err(format!("OpenSubdiv vertex {w} has no counterpart"));
-        }
-    }
-
+    let to_osd = vertex_map(&ours, &reference, pairs, &holes)?;
     let tolerance = RELATIVE_TOLERANCE * bounding_diagonal(&reference.positions);
     // Distance of each of our vertices to its counterpart; NaN counts as infinitely far.
     let distances: Vec<f64> = ours
@@ -419,7 +433,7 @@ pub fn compare(entry: &Entry, scheme: Scheme, set: Set) -> Result<Compared, Stri
         .chunks_exact(3)
         .zip(&to_osd)
         .map(|(p, &w)| {
-            if w == NONE {
+            if w == NO_VERTEX {
                 return 0.0;
             }
             let q = reference.positions[w as usize];

@@ -10,7 +10,7 @@
 //
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
-//              [--fvar-linear MODE] [--no-positions] [--varying]
+//              [--fvar-linear MODE] [--no-positions] [--varying] [--limit]
 //              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
 //
 // Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
@@ -35,6 +35,14 @@
 // --scheme loop that is midpoint subdivision (Loop's topology, linear positions), which
 // OpenSubdiv has no scheme of its own for.
 //
+// --limit evaluates the last level at the limit: after the interpolation,
+// PrimvarRefinerReal<double>::Limit(src, dstPos, dstTan1, dstTan2) on the last level's positions;
+// the `v` lines are then the limit positions (%.9g: the tests compare to 1e-5 of the size) and
+// each vertex gets a `vn` line (%.6g): the
+// cross product tan1 x tan2, normalised, or `vn 0 0 0` where the tangents are degenerate (zero,
+// or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). --limit with --fvar-linear or --varying is
+// refused.
+//
 // --time R refines and interpolates R times and prints, to stderr, the best and median wall
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
 // per-level position arrays), and of the two together; the refiner's construction from the
@@ -46,6 +54,7 @@
 #include <opensubdiv/version.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -220,7 +229,7 @@ void usage(int code) {
                  "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
                  "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
-                 "                  [--no-positions] [--varying]\n"
+                 "                  [--no-positions] [--varying] [--limit]\n"
                  "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
@@ -232,6 +241,7 @@ int main(int argc, char ** argv) {
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
     bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false, varying = false;
+    bool limit = false;
     int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
@@ -270,6 +280,8 @@ int main(int argc, char ** argv) {
             noPositions = true;
         } else if (arg == "--varying") {
             varying = true;
+        } else if (arg == "--limit") {
+            limit = true;
         } else if (arg == "--ignore-tags") {
             ignoreTags = true;
         } else if (arg == "--time") {
@@ -291,6 +303,7 @@ int main(int argc, char ** argv) {
         }
     }
     if (input.empty()) usage(2);
+    if (limit && (varying || fvarMode >= 0)) fail("--limit goes with neither --varying nor --fvar-linear");
 
     Mesh mesh = readObj(input);
 
@@ -405,7 +418,9 @@ int main(int argc, char ** argv) {
         if (!refiner) fail(input + ": OpenSubdiv refused the mesh (see its message above)");
         Clock::time_point t1 = Clock::now();
 
-        refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+        Far::TopologyRefiner::UniformOptions uniform(levels);
+        uniform.fullTopologyInLastLevel = limit;  // Limit needs the last level's vertex edges
+        refiner->RefineUniform(uniform);
         Clock::time_point t2 = Clock::now();
         perLevel.assign(levels + 1, std::vector<Point3>());
         perLevel[0].resize(numVertices);
@@ -462,9 +477,20 @@ int main(int argc, char ** argv) {
         }
     }
 
+    // The limit of the last level (after any timing too).
+    std::vector<Point3> limitPoints, tan1, tan2;
+    if (limit) {
+        size_t n = perLevel[levels].size();
+        limitPoints.resize(n);
+        tan1.resize(n);
+        tan2.resize(n);
+        Far::PrimvarRefinerReal<double> primvar(*refiner);
+        primvar.Limit(perLevel[levels].data(), limitPoints, tan1, tan2);
+    }
+
     if (noOutput) return 0;
     Far::TopologyLevel const & last = refiner->GetLevel(levels);
-    std::vector<Point3> const & points = perLevel[levels];
+    std::vector<Point3> const & points = limit ? limitPoints : perLevel[levels];
     std::FILE * out = stdout;
     if (!output.empty() && output != "-") {
         out = std::fopen(output.c_str(), "w");
@@ -473,7 +499,21 @@ int main(int argc, char ** argv) {
     std::vector<char> buffer(1 << 20);
     std::setvbuf(out, buffer.data(), _IOFBF, buffer.size());
     if (!noPositions)
-        for (Point3 const & p : points) std::fprintf(out, "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
+        for (Point3 const & p : points)
+            std::fprintf(out, limit ? "v %.9g %.9g %.9g\n" : "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
+    for (size_t v = 0; v < tan1.size(); ++v) {
+        double const * a = tan1[v].p;
+        double const * b = tan2[v].p;
+        double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        if (!(length > 0.0) || length < 1e-6 * la * lb) {
+            std::fprintf(out, "vn 0 0 0\n");
+        } else {
+            std::fprintf(out, "vn %.6g %.6g %.6g\n", n[0] / length, n[1] / length, n[2] / length);
+        }
+    }
     if (fvar)
         for (Point2 const & t : uvLevels[levels]) std::fprintf(out, "vt %.10g %.10g\n", t.p[0], t.p[1]);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
