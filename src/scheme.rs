@@ -208,12 +208,15 @@ fn refine_with_attributes<'a>(
     limit: bool,
 ) -> Result<Refined<'a>> {
     check_attributes(attributes, &base)?;
+    // At the limit, the two tangents and the normal add nine floats per vertex.
+    let limit_width = if limit { 9 } else { 0 };
     let sizes = AttributeSizes {
         vertex_width: attributes
             .iter()
             .filter(|a| !a.is_face_varying())
             .map(|a| a.item_size as u64)
-            .sum(),
+            .sum::<u64>()
+            + limit_width,
         face_varying: attributes
             .iter()
             .filter(|a| a.is_face_varying())

@@ -296,3 +296,19 @@ fn odd_inputs_do_not_panic() {
         }
     }
 }
+
+#[test]
+fn the_byte_guard_counts_tangents_and_normals() {
+    // A budget the plain result fits and the limit (nine more floats per vertex) does not.
+    let mesh = shapes::cube();
+    let prediction = subsurf::scheme::predict(
+        &HalfEdgeMesh::from_poly(&mesh).unwrap(),
+        &Options::new(Scheme::CatmullClark, 2),
+    );
+    let mut options = Options::new(Scheme::CatmullClark, 2);
+    options.max_bytes = prediction.bytes() + 4 * prediction.vertices;
+    assert!(subsurf::subdivide(&mesh, &options).is_ok());
+    assert!(matches!(subdivide_limit(&mesh, &options, &Tags::default()), Err(Error::TooLarge(_))));
+    options.max_bytes = prediction.bytes() + 36 * prediction.vertices;
+    assert!(subdivide_limit(&mesh, &options, &Tags::default()).is_ok());
+}
