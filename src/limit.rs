@@ -76,3 +76,86 @@ pub fn stencils(mesh: &HalfEdgeMesh, rules: &LimitRules, vertex: u32) -> [Stenci
     rules.tangents(&hood, first, second);
     out
 }
+
+/// OpenSubdiv's first face at every vertex and edge of a level (`Vtr`'s vertex-face and
+/// edge-face order), tracked through triangle splits so that an interior crease or corner of a
+/// Loop level starts its neighbourhood where OpenSubdiv does. As half-edges: per vertex an
+/// outgoing half-edge in its first face, per edge a half-edge of it in its first face (`u32::MAX`
+/// for none).
+///
+/// The base level lists a vertex's and an edge's faces in face order, so the first is the lowest
+/// (our first outgoing half-edge of an interior vertex, our first half-edge of an edge). The
+/// triangle split (`Vtr::TriRefinement`) keeps a parent vertex's order (the child at the same
+/// corner of the parent's first face first), starts an edge point at the leading child face of
+/// the edge's first face (the child at the edge's far corner), gives each half of a parent edge
+/// the child of the edge's first face, and each inner edge the corner child before the middle
+/// one.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FirstFaces {
+    pub vertices: Vec<u32>,
+    pub edges: Vec<u32>,
+}
+
+impl FirstFaces {
+    /// The base level's.
+    pub fn base(mesh: &HalfEdgeMesh) -> Self {
+        let vertices = mesh
+            .vertex_indices()
+            .map(|v| mesh.out_half_edges(v).first().copied().unwrap_or(u32::MAX))
+            .collect();
+        let edges = (0..mesh.num_edges())
+            .map(|e| mesh.edge_half_edges[mesh.edge_range(e)].first().copied().unwrap_or(u32::MAX))
+            .collect();
+        FirstFaces { vertices, edges }
+    }
+
+    /// The child half-edges that are first at their vertex and at their edge after a triangle
+    /// split of a level of `faces` triangles, in child half-edge numbers (child face `4t + j`
+    /// has half-edges `3(4t + j) + i`); [`FirstFaces::scatter`] files them by the child mesh.
+    pub fn triangle_split(&self, faces: usize) -> (Vec<u32>, Vec<u32>) {
+        // Parent half-edge `h` = `3t + k`: triangle `t`, corner `k`.
+        let at_corner = |h: u32| {
+            let (t, k) = (h / 3, h % 3);
+            3 * (4 * t + k) + k
+        };
+        let leading = |h: u32| {
+            let (t, k) = (h / 3, h % 3);
+            3 * (4 * t + (k + 1) % 3) + k
+        };
+        let valid = |&h: &u32| h != u32::MAX && (h as usize) < 3 * faces;
+        let mut vertices: Vec<u32> =
+            self.vertices.iter().filter(|h| valid(h)).map(|&h| at_corner(h)).collect();
+        vertices.extend(self.edges.iter().filter(|h| valid(h)).map(|&h| leading(h)));
+        let mut edges = Vec::with_capacity(2 * self.edges.len() + 3 * faces);
+        for &h in self.edges.iter().filter(|h| valid(h)) {
+            edges.push(at_corner(h));
+            edges.push(leading(h));
+        }
+        for t in 0..faces as u32 {
+            for j in 0..3 {
+                edges.push(3 * (4 * t + j) + (j + 1) % 3);
+            }
+        }
+        (vertices, edges)
+    }
+
+    /// Files the child half-edges of [`FirstFaces::triangle_split`] by their vertex and edge in
+    /// `child`.
+    pub fn scatter(child: &HalfEdgeMesh, (vertices, edges): (Vec<u32>, Vec<u32>)) -> Self {
+        let mut out = FirstFaces {
+            vertices: vec![u32::MAX; child.num_vertices()],
+            edges: vec![u32::MAX; child.num_edges()],
+        };
+        for h in vertices {
+            if let Some(&v) = child.he_from.get(h as usize) {
+                out.vertices[v as usize] = h;
+            }
+        }
+        for h in edges {
+            if let Some(&e) = child.he_edge.get(h as usize) {
+                out.edges[e as usize] = h;
+            }
+        }
+        out
+    }
+}

@@ -5,6 +5,7 @@
 use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
 use crate::fvar::{FVarChannel, LevelSharpness, MixedRules, PrimalRules, Split};
+use crate::limit::FirstFaces;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 pub use crate::options::{
     Boundary, FVarLinear, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
@@ -367,6 +368,9 @@ fn refine_levels<'a>(
     let mut level_tags: Option<LevelTags> = None;
     let levels = options.schemes.len();
     let mut last_scheme = Scheme::CatmullClark;
+    // At the limit, OpenSubdiv's first face at each vertex, through runs of triangle splits
+    // from the base mesh (see `crate::limit::FirstFaces`).
+    let mut first_faces = limit.then(|| FirstFaces::base(&mesh));
     for (level, &scheme) in options.schemes.iter().enumerate() {
         check_scheme(&mesh, scheme, boundary, level)?;
         // Quad/Triangle is Loop on triangles (Stam & Loop's rules reduce to Loop's there; see
@@ -380,6 +384,12 @@ fn refine_levels<'a>(
         };
         let scheme = on_triangles(scheme);
         last_scheme = scheme;
+        let split_first = match (first_faces.take(), scheme) {
+            (Some(f), Scheme::Loop | Scheme::Midpoint) if mesh.cell_size == 3 => {
+                Some(f.triangle_split(mesh.num_cells()))
+            }
+            _ => None,
+        };
         // The limit is taken on the last level's mesh, which is therefore built as any other.
         let last = level + 1 == levels && !limit;
         if level_tags.is_none() && scheme.supports_tags() {
@@ -512,6 +522,7 @@ fn refine_levels<'a>(
             }
             Level::Mesh(mesh, child_rows) => {
                 rows = child_rows;
+                first_faces = split_first.map(|split| FirstFaces::scatter(&mesh, split));
                 Cow::Owned(mesh)
             }
             Level::Quads { positions, parent, rows } => {
@@ -525,7 +536,8 @@ fn refine_levels<'a>(
                 "level {levels}: the limit is defined for catmull-clark and loop; quad-triangle on a mesh with quads has no limit masks"
             )));
         }
-        let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref() };
+        let starts = first_faces.as_ref().map(|f| &f.vertices[..]);
+        let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
         let (frame, rows) = crate::limit::evaluate(&mesh, &rules, &rows);
         let mut poly = mesh.to_poly();
         poly.positions = frame.positions;

@@ -199,7 +199,7 @@ fn position_masks_are_affine_and_tangent_masks_sum_to_zero() {
     ];
     for (mesh, scheme, boundary) in cases {
         let he = HalfEdgeMesh::from_poly(mesh).unwrap();
-        let rules = LimitRules { scheme, boundary, tags: None };
+        let rules = LimitRules { scheme, boundary, tags: None, starts: None };
         for v in he.vertex_indices() {
             let [position, first, second] = subsurf::limit::stencils(&he, &rules, v);
             assert!((position.total() - 1.0).abs() < 1e-5, "{scheme} vertex {v}: {position:?}");

@@ -49,9 +49,10 @@
 //!   vertices too, `λ` its subdominant eigenvalue); Catmull-Clark's vertex of two faces takes
 //!   the corner tangents.
 //!
-//! Where OpenSubdiv starts an interior vertex's list at another face, a crease or corner there
-//! gets the tangents of another span (the normal of the other side of the crease); smooth
-//! vertices do not depend on the start.
+//! An interior crease or corner depends on where the list starts (the normal is that of the
+//! span counter-clockwise from the first sharp edge, or of the first face); smooth vertices do
+//! not. [`LimitRules::starts`] names OpenSubdiv's first face where the driver tracks it (runs
+//! of Loop levels from the base mesh, [`crate::limit::FirstFaces`]).
 
 use super::crease::{for_each_incident_edge, LevelTags};
 use super::Weights;
@@ -95,6 +96,10 @@ pub struct LimitRules<'a> {
     pub scheme: Scheme,
     pub boundary: Boundary,
     pub tags: Option<&'a LevelTags>,
+    /// Per vertex, an outgoing half-edge in the face an interior vertex's list starts with
+    /// (OpenSubdiv's first face, see [`crate::limit::FirstFaces`]); `None`, or an entry that is
+    /// not an outgoing half-edge of its vertex, starts at the vertex's first outgoing half-edge.
+    pub starts: Option<&'a [u32]>,
 }
 
 impl LimitRules<'_> {
@@ -136,7 +141,13 @@ impl LimitRules<'_> {
             });
             faces.extend(out.iter().map(|&h| opposite(h)));
         } else {
-            let start = out[0];
+            // A boundary vertex starts at its leading boundary edge (listed first); an interior
+            // one where `starts` says, if anywhere.
+            let interior = mesh.he_next_around_edge[out[0] as usize] != out[0];
+            let start = match self.starts.and_then(|s| s.get(vertex as usize)) {
+                Some(&h) if interior && mesh.he_from.get(h as usize) == Some(&vertex) => h,
+                _ => out[0],
+            };
             let mut h = start;
             let mut closed = false;
             let mut open = false;
