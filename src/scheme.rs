@@ -11,7 +11,7 @@ pub use crate::options::{
 };
 use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{check_guards, predict, predict_counts, Prediction};
-use crate::primvar::Rows;
+use crate::primvar::{Primvar, Rows};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
@@ -201,16 +201,16 @@ fn refine_with_attributes<'a>(
     })
 }
 
-/// Runs every level of `options` on `base`, with the vertex-varying `rows` and the face-varying
-/// channels `fvar` alongside; `finish` turns the last level's rows and channels back into
-/// attribute channels.
-fn refine_levels<'a>(
+/// Runs every level of `options` on `base`, with the vertex-varying `rows` (or any other
+/// [`Primvar`], such as the stencils of [`crate::stencil`]) and the face-varying channels `fvar`
+/// alongside; `finish` turns the last level's rows and channels back into attribute channels.
+fn refine_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
-    mut rows: Rows,
+    mut rows: V,
     mut fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(Rows, Vec<FVarChannel>) -> Vec<Attribute>,
+    finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
 ) -> Result<Refined<'a>> {
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
@@ -411,23 +411,23 @@ fn refine_levels<'a>(
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
 /// positions with the parent mesh (the faces are implicit, see [`Refined`]), or a mesh built by
 /// index arithmetic where a host can do that.
-enum Level<'a> {
-    Poly(PolyMesh, Rows),
-    Quads { positions: Vec<f32>, parent: Cow<'a, HalfEdgeMesh>, rows: Rows },
-    Mesh(HalfEdgeMesh, Rows),
+enum Level<'a, V> {
+    Poly(PolyMesh, V),
+    Quads { positions: Vec<f32>, parent: Cow<'a, HalfEdgeMesh>, rows: V },
+    Mesh(HalfEdgeMesh, V),
 }
 
 /// What one level of a primal split carries besides the mesh: the vertex-varying rows, the
 /// face-varying channels (refined in place), the level's sharpness, and whether it is the last.
-struct Primal<'r, 's> {
-    rows: &'r Rows,
+struct Primal<'r, 's, V> {
+    rows: &'r V,
     fvar: &'r mut Vec<FVarChannel>,
     sharp: LevelSharpness<'s>,
     mode: crate::options::FVarLinear,
     last: bool,
 }
 
-impl Primal<'_, '_> {
+impl<V: Primvar> Primal<'_, '_, V> {
     /// One level of a primal split `S` with `rules` (`linear` for bilinear and midpoint, whose
     /// face-varying values are linear too), with the level's tags when it follows tags: the
     /// last level leaves out the children of holes (and keeps the faces implicit where it can);
@@ -437,7 +437,7 @@ impl Primal<'_, '_> {
         mesh: Cow<'a, HalfEdgeMesh>,
         rules: &R,
         linear: bool,
-    ) -> (Level<'a>, Option<LevelTags>) {
+    ) -> (Level<'a, V>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
         for channel in self.fvar.iter_mut() {
             let rules = PrimalRules::<S, R>::new(rules);
@@ -445,7 +445,8 @@ impl Primal<'_, '_> {
         }
         let tags = self.sharp.tags;
         let rows = self.rows;
-        let rows = if rows.is_empty() { Rows::default() } else { S::points(&mesh, rules, rows) };
+        let rows =
+            if rows.is_empty() { rows.with_capacity(0) } else { S::points(&mesh, rules, rows) };
         let positions = S::points(&mesh, rules, &mesh.positions);
         if !self.last {
             let child = S::child_mesh(&mesh, positions);
