@@ -20,6 +20,8 @@ use crate::rules::{
     Bilinear, CatmullClark, CreasedCatmullClark, CreasedLoop, DooSabin, LevelTags, Loop, Midpoint,
     QuadTriangle,
 };
+pub use crate::stencil::StencilTable;
+use crate::stencil::Stencils;
 use crate::tags::Tags;
 use std::borrow::Cow;
 
@@ -168,6 +170,81 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     tags: &Tags,
 ) -> Result<Refined<'a>> {
     refine_with_attributes(Cow::Borrowed(base), attributes, options, tags)
+}
+
+/// The stencil table of `mesh` under `options` and `tags` (see [`crate::stencil`]): for every
+/// output vertex, the control vertices and weights whose weighted sum gives it, with the output
+/// topology. The returned mesh is [`subdivide_with_tags`]'s result (its positions those of the
+/// control positions at build time); for new control positions `p` (3 floats per vertex of
+/// `mesh`), `table.evaluate(&p, 3, &mut refined.positions)` gives the positions `subdivide`
+/// would, without refining again, and any vertex-varying channel evaluates the same way.
+///
+/// Guards as [`subdivide_with_tags`], and the table itself must fit in `options.max_bytes`
+/// (4 bytes per output vertex and 8 per entry), else an [`Error::TooLarge`].
+pub fn stencil_table(
+    mesh: &PolyMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    let base = HalfEdgeMesh::from_poly(mesh)?;
+    build_stencil_table(Cow::Owned(base), options, tags)
+}
+
+/// [`stencil_table`] of an already built half-edge mesh.
+pub fn stencil_table_mesh(
+    base: &HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    build_stencil_table(Cow::Borrowed(base), options, tags)
+}
+
+fn build_stencil_table(
+    base: Cow<'_, HalfEdgeMesh>,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    check_guards(&base, options)?;
+    let levels = options.levels();
+    let num_control = base.num_vertices();
+    // At least one entry (8 bytes) and one offset (4) per output vertex: refused before any
+    // work when even that does not fit; otherwise the entries left are each level's limit.
+    let vertices = predict(&base, options).vertices;
+    let offset_bytes = vertices.saturating_add(1).saturating_mul(4);
+    let max_bytes = options.max_bytes;
+    let too_large = |bytes: String| {
+        format!(
+            "{levels} level(s) would make a stencil table of {bytes} bytes, more than the limit of {max_bytes} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)"
+        )
+    };
+    let least = offset_bytes.saturating_add(vertices.saturating_mul(8));
+    if least > max_bytes {
+        return Err(Error::TooLarge(too_large(format!("at least {least}"))));
+    }
+    let limit = usize::try_from((max_bytes - offset_bytes) / 8).unwrap_or(usize::MAX);
+    let mut stencils = None;
+    let refined = refine_levels(
+        base,
+        options,
+        tags,
+        Stencils::identity(num_control, limit),
+        Vec::new(),
+        |last, _| {
+            stencils = Some(last);
+            Vec::new()
+        },
+    )?;
+    let poly = refined.into_poly();
+    let stencils = stencils.unwrap_or_default();
+    let table = stencils.into_table(num_control, || too_large(format!("more than {max_bytes}")))?;
+    if table.num_stencils() != poly.num_vertices() {
+        return Err(Error::Unsupported(format!(
+            "the stencil table has {} rows for {} output vertices; please report this mesh",
+            table.num_stencils(),
+            poly.num_vertices()
+        )));
+    }
+    Ok((table, poly))
 }
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
