@@ -236,7 +236,7 @@ fn build_stencil_table(
     )?;
     let poly = refined.into_poly();
     let stencils = stencils.unwrap_or_default();
-    let table = stencils.into_table(num_control, || too_large(format!("more than {max_bytes}")))?;
+    let table = stencils.into_table(|| too_large(format!("more than {max_bytes}")))?;
     if table.num_stencils() != poly.num_vertices() {
         return Err(Error::Unsupported(format!(
             "the stencil table has {} rows for {} output vertices; please report this mesh",

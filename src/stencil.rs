@@ -30,6 +30,8 @@ pub struct Stencils {
     spans: Vec<[u32; 2]>,
     indices: Vec<u32>,
     weights: Vec<f32>,
+    /// Number of control vertices (the base level's vertices).
+    num_control: usize,
     limit: usize,
     overflowed: bool,
 }
@@ -39,6 +41,7 @@ static NO_STENCILS: Stencils = Stencils {
     spans: Vec::new(),
     indices: Vec::new(),
     weights: Vec::new(),
+    num_control: 0,
     limit: 0,
     overflowed: false,
 };
@@ -49,13 +52,13 @@ impl Stencils {
     pub fn identity(count: usize, limit: usize) -> Self {
         let limit = limit.min(u32::MAX as usize);
         if count > limit {
-            return Stencils { limit, overflowed: true, ..Stencils::default() };
+            return Stencils { num_control: count, limit, overflowed: true, ..Stencils::default() };
         }
-        let count = count as u32;
         Stencils {
-            spans: (0..count).map(|i| [i, 1]).collect(),
-            indices: (0..count).collect(),
-            weights: vec![1.0; count as usize],
+            spans: (0..count as u32).map(|i| [i, 1]).collect(),
+            indices: (0..count as u32).collect(),
+            weights: vec![1.0; count],
+            num_control: count,
             limit,
             overflowed: false,
         }
@@ -73,38 +76,29 @@ impl Stencils {
         (&self.indices[range.clone()], &self.weights[range])
     }
 
-    /// Appends the merged `entries` (sorted here) as one row's data; returns its span, or an
-    /// empty one (and marks the overflow) when the row would pass the limit.
-    fn append_merged(&mut self, entries: &mut [(u32, f32)]) -> [u32; 2] {
-        entries.sort_unstable_by_key(|&(c, _)| c);
+    /// Appends one row's data: the control vertices `touched` (sorted here) with their weights
+    /// in `sums`; returns the row's span, or an empty one (and marks the overflow) when the row
+    /// would pass the limit.
+    fn append_row(&mut self, touched: &mut [u32], sums: &[f64]) -> [u32; 2] {
+        touched.sort_unstable();
         let start = self.indices.len();
-        let mut rest = &entries[..];
-        while let Some(&(c, w)) = rest.first() {
-            // Sum the weights of one control vertex in f64: a vertex point at level 3 adds up
-            // a few hundred products.
-            let same = rest.iter().take_while(|&&(d, _)| d == c).count();
-            let total = rest[1..same].iter().fold(f64::from(w), |s, &(_, x)| s + f64::from(x));
-            rest = &rest[same..];
-            if total != 0.0 {
-                self.indices.push(c);
-                self.weights.push(total as f32);
-            }
-        }
-        if self.indices.len() > self.limit {
-            self.indices.truncate(start);
-            self.weights.truncate(start);
+        if start + touched.len() > self.limit {
             self.overflowed = true;
+            return [start as u32, 0];
+        }
+        for &c in touched.iter() {
+            let w = sums[c as usize];
+            if w != 0.0 {
+                self.indices.push(c);
+                self.weights.push(w as f32);
+            }
         }
         [start as u32, (self.indices.len() - start) as u32]
     }
 
-    /// The table of these stencils in row order, for `num_control` control vertices; an
-    /// [`Error::TooLarge`] when a limit was reached (`what` names the call for the message).
-    pub fn into_table(
-        self,
-        num_control: usize,
-        what: impl FnOnce() -> String,
-    ) -> Result<StencilTable> {
+    /// The table of these stencils in row order; an [`Error::TooLarge`] when a limit was
+    /// reached (`what` names the call for the message).
+    pub fn into_table(self, what: impl FnOnce() -> String) -> Result<StencilTable> {
         if self.overflowed {
             return Err(Error::TooLarge(what()));
         }
@@ -130,18 +124,25 @@ impl Stencils {
             }
             (indices, weights)
         };
-        Ok(StencilTable { num_control: num_control as u32, offsets, indices, weights })
+        let num_control = self.num_control as u32;
+        Ok(StencilTable { num_control, offsets, indices, weights })
     }
 }
 
 /// The [`Weights`] sink that composes stencils: a source's weight times the source's stencil
-/// (a parent vertex's, or a child face point's), gathered as (control vertex, weight) pairs in a
-/// scratch list that is reused from point to point, then sorted and merged into one row.
+/// (a parent vertex's, or a child face point's), summed per control vertex in a dense array
+/// (`sums`, one slot per control vertex, in f64: a vertex point at level 3 adds up a few hundred
+/// products) whose slots a row has touched are listed in `touched`; `stamp` marks a slot as
+/// belonging to the current row, so nothing is cleared between rows. No sort of the gathered
+/// products and no hashing: only the row's distinct control vertices are sorted.
 pub struct StencilSum<'a> {
     parent: &'a Stencils,
     he_from: &'a [u32],
     face_points: &'a Stencils,
-    scratch: Vec<(u32, f32)>,
+    sums: Vec<f64>,
+    stamps: Vec<u32>,
+    stamp: u32,
+    touched: Vec<u32>,
     /// The product of the scales of the open groups.
     scale: f32,
     /// The parents' overflow, passed on to every row made from them.
@@ -151,18 +152,33 @@ pub struct StencilSum<'a> {
 impl StencilSum<'_> {
     #[inline]
     fn gather(&mut self, source: &Stencils, i: usize, weight: f32) {
-        let weight = weight * self.scale;
+        let weight = f64::from(weight * self.scale);
         let (controls, weights) = source.row(i);
-        self.scratch.extend(controls.iter().zip(weights).map(|(&c, &w)| (c, w * weight)));
+        for (&c, &w) in controls.iter().zip(weights) {
+            let slot = c as usize;
+            let product = f64::from(w) * weight;
+            if self.stamps[slot] == self.stamp {
+                self.sums[slot] += product;
+            } else {
+                self.stamps[slot] = self.stamp;
+                self.sums[slot] = product;
+                self.touched.push(c);
+            }
+        }
     }
 
     /// Runs `rule` and appends the row it gives to `out`; returns the row's span.
     fn row_into(&mut self, out: &mut Stencils, rule: impl FnOnce(&mut Self)) -> [u32; 2] {
-        self.scratch.clear();
+        self.touched.clear();
         self.scale = 1.0;
+        if self.stamp == u32::MAX {
+            self.stamps.fill(0);
+            self.stamp = 0;
+        }
+        self.stamp += 1;
         rule(self);
         out.overflowed |= self.overflowed;
-        out.append_merged(&mut self.scratch)
+        out.append_row(&mut self.touched, &self.sums)
     }
 }
 
@@ -207,7 +223,10 @@ impl Primvar for Stencils {
             parent: self,
             he_from,
             face_points,
-            scratch: Vec::with_capacity(256),
+            sums: vec![0.0; self.num_control],
+            stamps: vec![0; self.num_control],
+            stamp: 0,
+            touched: Vec::with_capacity(256),
             scale: 1.0,
             overflowed: self.overflowed || face_points.overflowed,
         }
@@ -221,6 +240,7 @@ impl Primvar for Stencils {
             spans: Vec::with_capacity(capacity),
             indices: Vec::with_capacity(entries),
             weights: Vec::with_capacity(entries),
+            num_control: self.num_control,
             limit: self.limit,
             overflowed: self.overflowed,
         }
@@ -400,7 +420,7 @@ mod tests {
             w.vertex(2, 0.5);
             w.vertex(0, 0.25);
         });
-        let table = rows.into_table(3, String::new).unwrap();
+        let table = rows.into_table(String::new).unwrap();
         assert_eq!(table.offsets(), &[0, 1, 3, 5]);
         assert_eq!(table.indices(), &[2, 0, 2, 0, 1]);
         assert_eq!(table.weights(), &[1.0, 0.5, 0.5, 0.5, 0.5]);
@@ -420,7 +440,7 @@ mod tests {
         assert!(!rows.overflowed());
         rows.push(&mut sum, |w| w.vertex(1, 1.0));
         assert!(rows.overflowed());
-        let err = rows.into_table(3, || "too big".into()).unwrap_err();
+        let err = rows.into_table(|| "too big".into()).unwrap_err();
         assert_eq!(err, Error::TooLarge("too big".into()));
         assert!(Stencils::identity(5, 4).overflowed());
     }
