@@ -56,10 +56,45 @@ impl Prediction {
             .saturating_add(4u64.saturating_mul(self.faces))
             .saturating_add(12u64.saturating_mul(triangles))
     }
+
+    /// Bytes of the refined attribute channels: 4 per float per vertex of the vertex-varying
+    /// ones; for each face-varying one 4 per index (one per corner) and 4 per float of at most
+    /// one value per corner and per vertex (an upper bound: a value is a vertex's, seen by some
+    /// of its corners, or a vertex's no corner sees).
+    pub fn attribute_bytes(&self, sizes: &AttributeSizes) -> u64 {
+        let fvar_values = self.corners.saturating_add(self.vertices);
+        sizes.face_varying.iter().fold(
+            4u64.saturating_mul(sizes.vertex_width).saturating_mul(self.vertices),
+            |bytes, &size| {
+                bytes
+                    .saturating_add(4u64.saturating_mul(self.corners))
+                    .saturating_add(4u64.saturating_mul(size).saturating_mul(fvar_values))
+            },
+        )
+    }
 }
 
 /// Refuses, before any allocation, a call whose result would break a guard of `options`.
 pub fn check_guards(mesh: &HalfEdgeMesh, options: &Options) -> Result<()> {
+    check_guards_with(mesh, options, &AttributeSizes::default())
+}
+
+/// The floats per value of a call's attribute channels, for the byte guard.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct AttributeSizes {
+    /// Floats per vertex of every vertex-varying channel together.
+    pub vertex_width: u64,
+    /// Item size of each face-varying channel.
+    pub face_varying: Vec<u64>,
+}
+
+/// [`check_guards`] counting the bytes of attribute channels too (see
+/// [`Prediction::attribute_bytes`]).
+pub fn check_guards_with(
+    mesh: &HalfEdgeMesh,
+    options: &Options,
+    attributes: &AttributeSizes,
+) -> Result<()> {
     let levels = options.levels();
     if levels > MAX_LEVELS {
         return Err(Error::InvalidOption(format!(
@@ -78,10 +113,11 @@ pub fn check_guards(mesh: &HalfEdgeMesh, options: &Options) -> Result<()> {
             predicted.faces, options.max_faces
         )));
     }
-    let bytes = predicted.bytes();
+    let bytes = predicted.bytes().saturating_add(predicted.attribute_bytes(attributes));
     if bytes > options.max_bytes {
+        let channels = if *attributes == AttributeSizes::default() { "" } else { ", attributes" };
         return Err(Error::TooLarge(format!(
-            "{levels} level(s) would make a result of {bytes} bytes (positions, indices, face sizes and triangles), more than the limit of {} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)",
+            "{levels} level(s) would make a result of {bytes} bytes (positions, indices, face sizes, triangles{channels}), more than the limit of {} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)",
             options.max_bytes
         )));
     }

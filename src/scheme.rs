@@ -10,7 +10,9 @@ pub use crate::options::{
     Boundary, FVarLinear, Options, Scheme, DEFAULT_MAX_BYTES, DEFAULT_MAX_FACES, MAX_LEVELS,
 };
 use crate::predict::sqrt3_refines_boundary;
-pub use crate::predict::{check_guards, predict, predict_counts, Prediction};
+pub use crate::predict::{
+    check_guards, check_guards_with, predict, predict_counts, AttributeSizes, Prediction,
+};
 use crate::primvar::{Primvar, Rows};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
@@ -265,6 +267,19 @@ fn refine_with_attributes<'a>(
     tags: &Tags,
 ) -> Result<Refined<'a>> {
     check_attributes(attributes, &base)?;
+    let sizes = AttributeSizes {
+        vertex_width: attributes
+            .iter()
+            .filter(|a| !a.is_face_varying())
+            .map(|a| a.item_size as u64)
+            .sum(),
+        face_varying: attributes
+            .iter()
+            .filter(|a| a.is_face_varying())
+            .map(|a| a.item_size as u64)
+            .collect(),
+    };
+    check_guards_with(&base, options, &sizes)?;
     if attributes.is_empty() {
         // The positions-only instance of the level loop, as the plain calls use: in the one
         // that carries rows, the wasm build refined positions 27 % slower (other inlining).

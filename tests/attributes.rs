@@ -241,3 +241,30 @@ fn inputs_are_not_modified() {
     .unwrap();
     assert_eq!(given, copy);
 }
+
+/// The byte guard counts attribute channels: a cube at level 3 fits a budget set just above its
+/// plain result, and the same call with a 16-float channel of each kind is refused, naming the
+/// attributes (closed form: `Prediction::bytes` and `attribute_bytes`).
+#[test]
+fn the_byte_guard_counts_attributes() {
+    use subsurf::scheme::{predict, AttributeSizes};
+    let cube = subsurf::shapes::cube();
+    let base = subsurf::HalfEdgeMesh::from_poly(&cube).unwrap();
+    let mut options = Options::new(Scheme::CatmullClark, 3);
+    let predicted = predict(&base, &options);
+    options.max_bytes = predicted.bytes() + 16;
+    assert!(subsurf::subdivide(&cube, &options).is_ok());
+    let wide = Attribute::vertex("w", 16, vec![0.5; 16 * 8]);
+    let uv = Attribute::face_varying("uv", 16, vec![0.5; 16], vec![0; 24]);
+    let sizes = AttributeSizes { vertex_width: 16, face_varying: vec![16] };
+    // 386 vertices and 1536 corners at level 3: 4·16·386 + 4·1536 + 4·16·(1536 + 386).
+    assert_eq!(predicted.attribute_bytes(&sizes), 4 * 16 * 386 + 4 * 1536 + 4 * 16 * (1536 + 386));
+    let refused =
+        subdivide_with_attributes(&cube, &[wide, uv], &options, &Tags::default()).unwrap_err();
+    let message = refused.to_string();
+    assert!(message.contains("attributes") && message.contains("maxBytes"), "{message}");
+    options.max_bytes += predicted.attribute_bytes(&sizes);
+    let wide = Attribute::vertex("w", 16, vec![0.5; 16 * 8]);
+    let uv = Attribute::face_varying("uv", 16, vec![0.5; 16], vec![0; 24]);
+    assert!(subdivide_with_attributes(&cube, &[wide, uv], &options, &Tags::default()).is_ok());
+}

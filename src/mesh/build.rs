@@ -1,7 +1,7 @@
 //! Building a [`HalfEdgeMesh`] from flat arrays: validation first, then connectivity by a counting
 //! sort on the from-vertex and valence-sized scans, with no hash map and no comparison sort.
 
-use super::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh};
+use super::{uniform_cell_size, HalfEdgeMesh};
 use crate::error::{Error, Result};
 
 /// The largest half-edge count a base mesh may have, so that four refinement levels of index
@@ -54,16 +54,8 @@ fn connect(
     // The to-vertex of each outgoing-list entry too, so that the edge scans read one array.
     let (vertex_offsets, vertex_half_edges, out_to) =
         counting_sort_with(&indices, num_vertices, &he_to);
-    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
-    let mut mesh = HalfEdgeMesh {
-        positions,
-        cell_offsets,
-        he_from: indices,
-        he_cell,
-        cell_size,
-        repeated_corners,
-        ..HalfEdgeMesh::default()
-    };
+    let mut mesh = HalfEdgeMesh::from_cells(positions, cell_offsets, indices, Some(cell_size));
+    mesh.repeated_corners = repeated_corners;
     mesh.vertex_offsets = vertex_offsets;
     mesh.vertex_half_edges = vertex_half_edges;
     let has_boundary = build_edges(&mut mesh, &he_to, &out_to);
@@ -464,10 +456,7 @@ pub(crate) fn from_cells_and_edges(
     marked_non_manifold: Vec<bool>,
 ) -> HalfEdgeMesh {
     let nh = he_from.len();
-    let cell_size = uniform_cell_size(&cell_offsets);
-    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
-    let mut mesh =
-        HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, cell_size, ..Default::default() };
+    let mut mesh = HalfEdgeMesh::from_cells(positions, cell_offsets, he_from, None);
 
     let (edge_offsets, edge_half_edges) = counting_sort(&he_edge, num_edges);
     let mut he_next_around_edge = vec![0u32; nh];

@@ -91,6 +91,25 @@ pub(crate) fn uniform_cell_size(cell_offsets: &[u32]) -> u32 {
     }
 }
 
+impl HalfEdgeMesh {
+    /// A mesh of these cells (corners `he_from`, cell `c` the half-edges
+    /// `cell_offsets[c]..cell_offsets[c + 1]`) without connectivity yet: what every builder starts
+    /// from (the general one, the dual split's, the quad and triangle splits'), so that the
+    /// mesh's own arrays and what follows from its cells (`cell_size`, the stored `he_cell`) are
+    /// set in this one place; each builder then fills in the edges and vertex lists it computes
+    /// its own way. `cell_size` is the uniform size when the caller knows it, else it is found.
+    pub(crate) fn from_cells(
+        positions: Vec<[f32; 3]>,
+        cell_offsets: Vec<u32>,
+        he_from: Vec<u32>,
+        cell_size: Option<u32>,
+    ) -> Self {
+        let cell_size = cell_size.unwrap_or_else(|| uniform_cell_size(&cell_offsets));
+        let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
+        HalfEdgeMesh { positions, cell_offsets, he_from, he_cell, cell_size, ..Default::default() }
+    }
+}
+
 /// The `he_cell` a mesh with these cells stores: each half-edge's cell, or nothing when
 /// [`uniform_cell_size`] is not 0 (then [`HalfEdgeMesh::cell_of`] is arithmetic).
 pub(crate) fn stored_half_edge_cells(cell_offsets: &[u32], cell_size: u32) -> Vec<u32> {

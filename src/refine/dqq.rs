@@ -26,7 +26,7 @@
 //! are then unchanged.
 
 use crate::error::{Error, Result};
-use crate::mesh::{stored_half_edge_cells, uniform_cell_size, HalfEdgeMesh, NonManifold, PolyMesh};
+use crate::mesh::{HalfEdgeMesh, NonManifold, PolyMesh};
 use crate::primvar::{Primvar, Rows};
 use crate::rules::CornerRules;
 
@@ -480,17 +480,10 @@ pub(crate) fn manifold_mesh(parts: ManifoldParts) -> HalfEdgeMesh {
 
     let boundary_count = he_twin.iter().enumerate().filter(|&(h, &t)| t as usize == h).count();
     let num_edges = (nh + boundary_count) / 2;
-    let cell_size = uniform_cell_size(&cell_offsets);
-    let he_cell = stored_half_edge_cells(&cell_offsets, cell_size);
     let mut mesh = HalfEdgeMesh {
-        cell_size,
-        positions,
-        cell_offsets,
-        he_from,
-        he_cell,
         he_next_around_edge: he_twin,
         vertex_offsets,
-        ..HalfEdgeMesh::default()
+        ..HalfEdgeMesh::from_cells(positions, cell_offsets, he_from, None)
     };
     let (he_from, he_twin) = (&mesh.he_from, &mesh.he_next_around_edge);
     let to_vertex = |h: usize| {

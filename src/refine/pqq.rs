@@ -263,11 +263,6 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
     }
 
     HalfEdgeMesh {
-        positions,
-        cell_offsets: (0..=nh).map(|c| 4 * c).collect(),
-        he_from,
-        // Child cell h is 4h..4h + 4: `cell_of` is a shift.
-        he_cell: Vec::new(),
         he_edge: he_edge.into_flattened(),
         he_next_around_edge: he_next_around_edge.into_flattened(),
         edge_vertices,
@@ -280,8 +275,14 @@ pub fn child_mesh(mesh: &HalfEdgeMesh, positions: Vec<[f32; 3]>) -> HalfEdgeMesh
         multi_fan_vertices: mesh.multi_fan_vertices,
         marked_non_manifold: super::child_marks(mesh, (2 * ne + nh) as usize),
         repeated_corners: false,
-        // Every child cell is a quad (none when the parent has no cells).
-        cell_size: if nh > 0 { 4 } else { 0 },
+        // Every child cell is a quad (none when the parent has no cells): child cell h is
+        // 4h..4h + 4, and `cell_of` is a shift.
+        ..HalfEdgeMesh::from_cells(
+            positions,
+            (0..=nh).map(|c| 4 * c).collect(),
+            he_from,
+            Some(if nh > 0 { 4 } else { 0 }),
+        )
     }
 }
 
