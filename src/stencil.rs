@@ -6,11 +6,11 @@
 //! control positions, or for any vertex-varying channel, is one sparse product
 //! ([`StencilTable::evaluate`]) instead of a subdivision.
 //!
-//! The table is built by running the call's levels with [`Stencils`] as the vertex-varying data
+//! The table is built by running the call's levels with `Stencils` as the vertex-varying data
 //! ([`crate::primvar::Primvar`]): the rules name a new point's parents through the same
-//! [`Weights`] sink as for positions, and [`StencilSum`] composes their stencils (the base level
+//! [`Weights`] sink as for positions, and `StencilSum` composes their stencils (the base level
 //! is the identity), so every path of the driver (every scheme, tags, holes, boundary modes)
-//! gives its stencils without code of its own. `scheme::stencil_table` is the entry point.
+//! gives its stencils without code of its own. [`crate::scheme::stencil_table`] is the entry point.
 
 use crate::error::{Error, Result};
 use crate::primvar::Primvar;
@@ -26,7 +26,7 @@ use crate::rules::Weights;
 /// pass it is left empty and marks the stencils `overflowed` (which propagates to every level
 /// made from them), so that the call can refuse the table instead of exhausting memory.
 #[derive(Clone, Debug, Default)]
-pub struct Stencils {
+pub(crate) struct Stencils {
     spans: Vec<[u32; 2]>,
     indices: Vec<u32>,
     weights: Vec<f32>,
@@ -49,7 +49,7 @@ static NO_STENCILS: Stencils = Stencils {
 impl Stencils {
     /// The control vertices themselves: vertex `i` is control vertex `i` with weight 1. At most
     /// `limit` entries per level (see [`Stencils`]).
-    pub fn identity(count: usize, limit: usize) -> Self {
+    pub(crate) fn identity(count: usize, limit: usize) -> Self {
         let limit = limit.min(u32::MAX as usize);
         if count > limit {
             return Stencils { num_control: count, limit, overflowed: true, ..Stencils::default() };
@@ -62,11 +62,6 @@ impl Stencils {
             limit,
             overflowed: false,
         }
-    }
-
-    /// True when an entry limit was reached: some rows are missing their entries.
-    pub fn overflowed(&self) -> bool {
-        self.overflowed
     }
 
     /// The stencil of vertex `i`.
@@ -98,7 +93,7 @@ impl Stencils {
 
     /// The table of these stencils in row order; an [`Error::TooLarge`] when a limit was
     /// reached (`what` names the call for the message).
-    pub fn into_table(self, what: impl FnOnce() -> String) -> Result<StencilTable> {
+    pub(crate) fn into_table(self, what: impl FnOnce() -> String) -> Result<StencilTable> {
         if self.overflowed {
             return Err(Error::TooLarge(what()));
         }
@@ -135,7 +130,7 @@ impl Stencils {
 /// products) whose slots a row has touched are listed in `touched`; `stamp` marks a slot as
 /// belonging to the current row, so nothing is cleared between rows. No sort of the gathered
 /// products and no hashing: only the row's distinct control vertices are sorted.
-pub struct StencilSum<'a> {
+pub(crate) struct StencilSum<'a> {
     parent: &'a Stencils,
     he_from: &'a [u32],
     face_points: &'a Stencils,
@@ -437,11 +432,11 @@ mod tests {
         let mut rows = control.with_capacity(2);
         rows.push(&mut sum, |w| w.vertex(0, 1.0));
         rows.push(&mut sum, |w| (0..3).for_each(|v| w.vertex(v, 1.0 / 3.0)));
-        assert!(!rows.overflowed());
+        assert!(!rows.overflowed);
         rows.push(&mut sum, |w| w.vertex(1, 1.0));
-        assert!(rows.overflowed());
+        assert!(rows.overflowed);
         let err = rows.into_table(|| "too big".into()).unwrap_err();
         assert_eq!(err, Error::TooLarge("too big".into()));
-        assert!(Stencils::identity(5, 4).overflowed());
+        assert!(Stencils::identity(5, 4).overflowed);
     }
 }
