@@ -557,14 +557,7 @@ impl<V: Primvar> Primal<'_, '_, V> {
             for channel in self.fvar.iter_mut() {
                 channel.keep_faces(size, keep);
             }
-            let mut kept = 0usize;
-            for f in 0..indices.len() / size {
-                if keep(f) {
-                    indices.copy_within(f * size..(f + 1) * size, kept * size);
-                    kept += 1;
-                }
-            }
-            indices.truncate(kept * size);
+            crate::mesh::retain_faces(&mut indices, size, keep);
         }
         let face_sizes = vec![size as u32; indices.len() / size];
         (Level::Poly(PolyMesh { positions, indices, face_sizes }, rows), None)
