@@ -18,7 +18,7 @@
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
 //! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
 //! [`fvar`] (face-varying topology and values), [`attributes`] (data besides positions),
-//! [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
+//! [`stencil`] (stencil tables: refine once, evaluate every frame), [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
 //! and the wasm bindings.
 
 pub mod attributes;
@@ -36,6 +36,7 @@ pub mod refined;
 pub mod rules;
 pub mod scheme;
 pub mod shapes;
+pub mod stencil;
 pub mod tags;
 
 #[cfg(target_arch = "wasm32")]
@@ -44,5 +45,6 @@ pub mod wasm;
 pub use error::{Error, Result};
 pub use mesh::{HalfEdgeMesh, PolyMesh};
 pub use options::{Boundary, CreaseMethod, FVarLinear};
-pub use scheme::{subdivide, subdivide_with_tags, Options, Scheme};
+pub use scheme::{stencil_table, subdivide, subdivide_with_tags, Options, Scheme};
+pub use stencil::StencilTable;
 pub use tags::{Corner, Crease, Tags};

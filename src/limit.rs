@@ -3,7 +3,7 @@
 //! through the same sinks that refine them ([`PointSum`], [`RowSum`]).
 
 use crate::mesh::HalfEdgeMesh;
-use crate::primvar::{PointSum, RowSum, Rows};
+use crate::primvar::{PointSum, Primvar};
 use crate::rules::limit::{LimitRules, Neighbourhood};
 use crate::rules::Stencil;
 use glam::Vec3;
@@ -31,8 +31,9 @@ pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
 }
 
 /// The limit frame of every vertex of `mesh` (whose positions are the level's), and the limit
-/// of `rows` (the level's vertex-varying rows, possibly empty) under the position masks.
-pub fn evaluate(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &Rows) -> (LimitFrame, Rows) {
+/// of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under the
+/// position masks.
+pub fn evaluate<V: Primvar>(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &V) -> (LimitFrame, V) {
     let n = mesh.num_vertices();
     let points = &mesh.positions;
     let mut frame = LimitFrame {
@@ -40,8 +41,9 @@ pub fn evaluate(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &Rows) -> (LimitF
         tangents: [Vec::with_capacity(3 * n), Vec::with_capacity(3 * n)],
         normals: Vec::with_capacity(3 * n),
     };
-    let mut out_rows = Rows { width: rows.width, values: Vec::with_capacity(rows.values.len()) };
-    let mut row_sum = RowSum::new(&rows.values, rows.width, &mesh.he_from, &[]);
+    let with_rows = !rows.is_empty();
+    let mut out_rows = rows.with_capacity(if with_rows { n } else { 0 });
+    let mut row_sum = rows.sum(&mesh.he_from, None);
     let mut hood = Neighbourhood::default();
     for v in mesh.vertex_indices() {
         rules.gather(mesh, v, &mut hood);
@@ -55,8 +57,8 @@ pub fn evaluate(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &Rows) -> (LimitF
         frame.tangents[0].extend(first);
         frame.tangents[1].extend(second);
         frame.normals.extend(normal(first, second));
-        if rows.width > 0 {
-            row_sum.eval_into(&mut out_rows.values, |w| rules.position(&hood, w));
+        if with_rows {
+            out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
         }
     }
     (frame, out_rows)

@@ -311,6 +311,9 @@ pub trait Primvar: Sized {
     fn extend_zeroed(&mut self, count: usize);
     /// Overwrites value `i` with the one whose weights `rule` gives.
     fn set<'a>(&mut self, i: usize, sum: &mut Self::Sum<'a>, rule: impl FnOnce(&mut Self::Sum<'a>));
+    /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
+    /// return `with_capacity(0)` without running the rules.
+    fn is_empty(&self) -> bool;
 }
 
 impl Primvar for Vec<[f32; 3]> {
@@ -348,6 +351,10 @@ impl Primvar for Vec<[f32; 3]> {
         self.resize(self.len() + count, [0.0; 3]);
     }
 
+    fn is_empty(&self) -> bool {
+        <[[f32; 3]]>::is_empty(self)
+    }
+
     #[inline(always)]
     fn set<'a>(&mut self, i: usize, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
         self[i] = sum.eval(rule);
@@ -383,5 +390,9 @@ impl Primvar for Rows {
         sum.sum.fill(0.0);
         rule(sum);
         self.values[i * self.width..(i + 1) * self.width].copy_from_slice(&sum.sum);
+    }
+
+    fn is_empty(&self) -> bool {
+        Rows::is_empty(self)
     }
 }

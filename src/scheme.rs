@@ -14,7 +14,7 @@ use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{
     check_guards, check_guards_with, predict, predict_counts, AttributeSizes, Prediction,
 };
-use crate::primvar::Rows;
+use crate::primvar::{Primvar, Rows};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
@@ -24,6 +24,8 @@ use crate::rules::{
     Bilinear, CatmullClark, CreasedCatmullClark, CreasedLoop, DooSabin, LevelTags, Loop, Midpoint,
     QuadTriangle,
 };
+pub use crate::stencil::StencilTable;
+use crate::stencil::Stencils;
 use crate::tags::Tags;
 use std::borrow::Cow;
 
@@ -190,6 +192,82 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     refine_with_attributes(Cow::Borrowed(base), attributes, options, tags, false)
 }
 
+/// The stencil table of `mesh` under `options` and `tags` (see [`crate::stencil`]): for every
+/// output vertex, the control vertices and weights whose weighted sum gives it, with the output
+/// topology. The returned mesh is [`subdivide_with_tags`]'s result (its positions those of the
+/// control positions at build time); for new control positions `p` (3 floats per vertex of
+/// `mesh`), `table.evaluate(&p, 3, &mut refined.positions)` gives the positions `subdivide`
+/// would, without refining again, and any vertex-varying channel evaluates the same way.
+///
+/// Guards as [`subdivide_with_tags`], and the table itself must fit in `options.max_bytes`
+/// (4 bytes per output vertex and 8 per entry), else an [`Error::TooLarge`].
+pub fn stencil_table(
+    mesh: &PolyMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    let base = HalfEdgeMesh::from_poly(mesh)?;
+    build_stencil_table(Cow::Owned(base), options, tags)
+}
+
+/// [`stencil_table`] of an already built half-edge mesh.
+pub fn stencil_table_mesh(
+    base: &HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    build_stencil_table(Cow::Borrowed(base), options, tags)
+}
+
+fn build_stencil_table(
+    base: Cow<'_, HalfEdgeMesh>,
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilTable, PolyMesh)> {
+    check_guards(&base, options)?;
+    let levels = options.levels();
+    let num_control = base.num_vertices();
+    // At least one entry (8 bytes) and one offset (4) per output vertex: refused before any
+    // work when even that does not fit; otherwise the entries left are each level's limit.
+    let vertices = predict(&base, options).vertices;
+    let offset_bytes = vertices.saturating_add(1).saturating_mul(4);
+    let max_bytes = options.max_bytes;
+    let too_large = |bytes: String| {
+        format!(
+            "{levels} level(s) would make a stencil table of {bytes} bytes, more than the limit of {max_bytes} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)"
+        )
+    };
+    let least = offset_bytes.saturating_add(vertices.saturating_mul(8));
+    if least > max_bytes {
+        return Err(Error::TooLarge(too_large(format!("at least {least}"))));
+    }
+    let limit = usize::try_from((max_bytes - offset_bytes) / 8).unwrap_or(usize::MAX);
+    let mut stencils = None;
+    let refined = refine_levels(
+        base,
+        options,
+        tags,
+        Stencils::identity(num_control, limit),
+        Vec::new(),
+        |last, _| {
+            stencils = Some(last);
+            Vec::new()
+        },
+        false,
+    )?;
+    let poly = refined.into_poly();
+    let stencils = stencils.unwrap_or_default();
+    let table = stencils.into_table(|| too_large(format!("more than {max_bytes}")))?;
+    if table.num_stencils() != poly.num_vertices() {
+        return Err(Error::Unsupported(format!(
+            "the stencil table has {} rows for {} output vertices; please report this mesh",
+            table.num_stencils(),
+            poly.num_vertices()
+        )));
+    }
+    Ok((table, poly))
+}
+
 /// The `finish` of calls without attribute channels: one function item, so that every such
 /// call shares one instance of the level loop.
 fn no_attributes(_: Rows, _: Vec<FVarChannel>) -> Vec<Attribute> {
@@ -328,16 +406,17 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
     poly
 }
 
-/// Runs every level of `options` on `base`, with the vertex-varying `rows` and the face-varying
-/// channels `fvar` alongside; `finish` turns the last level's rows and channels back into
-/// attribute channels. With `limit`, the last level is evaluated at the limit.
-fn refine_levels<'a>(
+/// Runs every level of `options` on `base`, with the vertex-varying `rows` (or any other
+/// [`Primvar`], such as the stencils of [`crate::stencil`]) and the face-varying channels `fvar`
+/// alongside; `finish` turns the last level's rows and channels back into attribute channels.
+/// With `limit`, the last level is evaluated at the limit (`rows` too, by the position masks).
+fn refine_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
-    mut rows: Rows,
+    mut rows: V,
     mut fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(Rows, Vec<FVarChannel>) -> Vec<Attribute>,
+    finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
     limit: bool,
 ) -> Result<Refined<'a>> {
     if limit {
@@ -552,23 +631,23 @@ fn refine_levels<'a>(
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
 /// positions with the parent mesh (the faces are implicit, see [`Refined`]), or a mesh built by
 /// index arithmetic where a host can do that.
-enum Level<'a> {
-    Poly(PolyMesh, Rows),
-    Quads { positions: Vec<f32>, parent: Cow<'a, HalfEdgeMesh>, rows: Rows },
-    Mesh(HalfEdgeMesh, Rows),
+enum Level<'a, V> {
+    Poly(PolyMesh, V),
+    Quads { positions: Vec<f32>, parent: Cow<'a, HalfEdgeMesh>, rows: V },
+    Mesh(HalfEdgeMesh, V),
 }
 
 /// What one level of a primal split carries besides the mesh: the vertex-varying rows, the
 /// face-varying channels (refined in place), the level's sharpness, and whether it is the last.
-struct Primal<'r, 's> {
-    rows: &'r Rows,
+struct Primal<'r, 's, V> {
+    rows: &'r V,
     fvar: &'r mut Vec<FVarChannel>,
     sharp: LevelSharpness<'s>,
     mode: crate::options::FVarLinear,
     last: bool,
 }
 
-impl Primal<'_, '_> {
+impl<V: Primvar> Primal<'_, '_, V> {
     /// One level of a primal split `S` with `rules` (`linear` for bilinear and midpoint, whose
     /// face-varying values are linear too), with the level's tags when it follows tags: the
     /// last level leaves out the children of holes (and keeps the faces implicit where it can);
@@ -578,7 +657,7 @@ impl Primal<'_, '_> {
         mesh: Cow<'a, HalfEdgeMesh>,
         rules: &R,
         linear: bool,
-    ) -> (Level<'a>, Option<LevelTags>) {
+    ) -> (Level<'a, V>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
         for channel in self.fvar.iter_mut() {
             let rules = PrimalRules::<S, R>::new(rules);
@@ -586,7 +665,8 @@ impl Primal<'_, '_> {
         }
         let tags = self.sharp.tags;
         let rows = self.rows;
-        let rows = if rows.is_empty() { Rows::default() } else { S::points(&mesh, rules, rows) };
+        let rows =
+            if rows.is_empty() { rows.with_capacity(0) } else { S::points(&mesh, rules, rows) };
         let positions = S::points(&mesh, rules, &mesh.positions);
         if !self.last {
             let child = S::child_mesh(&mesh, positions);
@@ -605,14 +685,7 @@ impl Primal<'_, '_> {
             for channel in self.fvar.iter_mut() {
                 channel.keep_faces(size, keep);
             }
-            let mut kept = 0usize;
-            for f in 0..indices.len() / size {
-                if keep(f) {
-                    indices.copy_within(f * size..(f + 1) * size, kept * size);
-                    kept += 1;
-                }
-            }
-            indices.truncate(kept * size);
+            crate::mesh::retain_faces(&mut indices, size, keep);
         }
         let face_sizes = vec![size as u32; indices.len() / size];
         (Level::Poly(PolyMesh { positions, indices, face_sizes }, rows), None)

@@ -169,14 +169,6 @@ impl FVarChannel {
 
     /// Keeps the corners of the faces `keep` says, faces of `size` corners.
     pub fn keep_faces(&mut self, size: usize, keep: impl Fn(usize) -> bool) {
-        let corners = &mut self.level.corner_values;
-        let mut kept = 0usize;
-        for f in 0..corners.len() / size {
-            if keep(f) {
-                corners.copy_within(f * size..(f + 1) * size, kept * size);
-                kept += 1;
-            }
-        }
-        corners.truncate(kept * size);
+        crate::mesh::retain_faces(&mut self.level.corner_values, size, keep);
     }
 }

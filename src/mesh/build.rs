@@ -230,6 +230,22 @@ struct Edges {
 }
 
 impl Edges {
+    /// Ends edge `e`, whose half-edges are those listed from `start`: links them around the
+    /// edge, notes a boundary or non-manifold edge (`marked`: known non-manifold already).
+    fn close_edge(&mut self, mesh: &HalfEdgeMesh, e: u32, start: usize, marked: bool) {
+        let list = &self.edge_half_edges[start..];
+        self.non_manifold |= marked
+            || list.len() > 2
+            || (list.len() == 2
+                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
+        self.boundary |= list.len() == 1;
+        for (i, &g) in list.iter().enumerate() {
+            self.he_edge[g as usize] = e;
+            self.he_next_around_edge[g as usize] = list[(i + 1) % list.len()];
+        }
+        self.edge_offsets.push(self.edge_half_edges.len() as u32);
+    }
+
     fn with_capacity(num_half_edges: usize) -> Self {
         let mut edge_offsets = Vec::with_capacity(num_half_edges / 2 + 2);
         edge_offsets.push(0);
@@ -344,17 +360,8 @@ fn general_edges(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) -> Edges {
             let same_pair = out_with_to(mesh, out_to, from).filter(|&(t, _)| t == to);
             edges.edge_half_edges.extend(same_pair.map(|(_, g)| g));
         }
-        let list = &mut edges.edge_half_edges[start..];
-        list.sort_unstable();
-        edges.non_manifold |= list.len() > 2
-            || (list.len() == 2
-                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
-        edges.boundary |= list.len() == 1;
-        for (i, &g) in list.iter().enumerate() {
-            edges.he_edge[g as usize] = e;
-            edges.he_next_around_edge[g as usize] = list[(i + 1) % list.len()];
-        }
-        edges.edge_offsets.push(edges.edge_half_edges.len() as u32);
+        edges.edge_half_edges[start..].sort_unstable();
+        edges.close_edge(mesh, e, start, false);
     }
     edges
 }
@@ -406,17 +413,7 @@ fn edges_of_repeating_cells(mesh: &HalfEdgeMesh, he_to: &[u32], out_to: &[u32]) 
             }
             marked.push(split);
         }
-        let list = &edges.edge_half_edges[start..];
-        edges.non_manifold |= marked[e as usize]
-            || list.len() > 2
-            || (list.len() == 2
-                && mesh.he_from[list[0] as usize] == mesh.he_from[list[1] as usize]);
-        edges.boundary |= list.len() == 1;
-        for (i, &g) in list.iter().enumerate() {
-            edges.he_edge[g as usize] = e;
-            edges.he_next_around_edge[g as usize] = list[(i + 1) % list.len()];
-        }
-        edges.edge_offsets.push(edges.edge_half_edges.len() as u32);
+        edges.close_edge(mesh, e, start, marked[e as usize]);
     }
     if marked.contains(&true) {
         edges.marked = marked;

@@ -110,6 +110,19 @@ impl HalfEdgeMesh {
     }
 }
 
+/// Keeps, in order, the faces of `corners` (faces of `size` corners each, as a split's index
+/// list or a channel's corner values) that `keep` takes by face index.
+pub(crate) fn retain_faces(corners: &mut Vec<u32>, size: usize, keep: impl Fn(usize) -> bool) {
+    let mut kept = 0usize;
+    for f in 0..corners.len() / size {
+        if keep(f) {
+            corners.copy_within(f * size..(f + 1) * size, kept * size);
+            kept += 1;
+        }
+    }
+    corners.truncate(kept * size);
+}
+
 /// The `he_cell` a mesh with these cells stores: each half-edge's cell, or nothing when
 /// [`uniform_cell_size`] is not 0 (then [`HalfEdgeMesh::cell_of`] is arithmetic).
 pub(crate) fn stored_half_edge_cells(cell_offsets: &[u32], cell_size: u32) -> Vec<u32> {

@@ -265,14 +265,14 @@ fn child_points<R: CornerRules, P: Primvar>(
 }
 
 /// The child values of the vertex-varying `rows` (none when it is empty).
-fn child_rows<R: CornerRules>(
+fn child_rows<R: CornerRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     layout: &Layout,
-    rows: &Rows,
-) -> Rows {
+    rows: &P,
+) -> P {
     if rows.is_empty() {
-        return Rows::default();
+        return rows.with_capacity(0);
     }
     child_points(mesh, rules, layout, rows)
 }
@@ -282,13 +282,13 @@ pub fn refine<R: CornerRules>(mesh: &HalfEdgeMesh, rules: &R, boundary: DualBoun
     refine_with(mesh, rules, boundary, &Rows::default()).0
 }
 
-/// [`refine`], and the child values of the vertex-varying `rows`.
-pub fn refine_with<R: CornerRules>(
+/// [`refine`], and the child values of the vertex-varying `rows` (or of any [`Primvar`]).
+pub fn refine_with<R: CornerRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     boundary: DualBoundary,
-    rows: &Rows,
-) -> (PolyMesh, Rows) {
+    rows: &P,
+) -> (PolyMesh, P) {
     let layout = Layout::new(mesh, boundary);
     let positions = child_points(mesh, rules, &layout, &mesh.positions);
     let indices = layout.face_indices(mesh);
@@ -309,13 +309,13 @@ pub fn child_mesh<R: CornerRules>(
     child_mesh_with(mesh, rules, boundary, &Rows::default()).map(|(child, _)| child)
 }
 
-/// [`child_mesh`], and the child values of the vertex-varying `rows`.
-pub fn child_mesh_with<R: CornerRules>(
+/// [`child_mesh`], and the child values of the vertex-varying `rows` (or of any [`Primvar`]).
+pub fn child_mesh_with<R: CornerRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     boundary: DualBoundary,
-    rows: &Rows,
-) -> Result<(HalfEdgeMesh, Rows)> {
+    rows: &P,
+) -> Result<(HalfEdgeMesh, P)> {
     if mesh.is_non_manifold() || mesh.num_half_edges() == 0 {
         let (poly, rows) = refine_with(mesh, rules, boundary, rows);
         return Ok((HalfEdgeMesh::from_poly(&poly)?, rows));

@@ -50,12 +50,12 @@ pub fn refine<R: MixedSplitRules>(mesh: &HalfEdgeMesh, rules: &R) -> PolyMesh {
     refine_with(mesh, rules, &Rows::default()).0
 }
 
-/// [`refine`], and the child values of the vertex-varying `rows`.
-pub fn refine_with<R: MixedSplitRules>(
+/// [`refine`], and the child values of the vertex-varying `rows` (or of any [`Primvar`]).
+pub fn refine_with<R: MixedSplitRules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
-    rows: &Rows,
-) -> (PolyMesh, Rows) {
+    rows: &P,
+) -> (PolyMesh, P) {
     let (nv, nf) = (mesh.num_vertices(), mesh.num_cells());
     let size = |c: usize| mesh.cell_range(c).len();
     // Index of each cell's centroid among the centroids (u32::MAX for triangles).
@@ -73,8 +73,11 @@ pub fn refine_with<R: MixedSplitRules>(
     }
     let edge_base = (nv as u32) + centroids;
     let positions = points(mesh, rules, &mesh.positions, &centroid_of).into_flattened();
-    let rows =
-        if rows.is_empty() { Rows::default() } else { points(mesh, rules, rows, &centroid_of) };
+    let rows = if rows.is_empty() {
+        rows.with_capacity(0)
+    } else {
+        points(mesh, rules, rows, &centroid_of)
+    };
     let mut indices = Vec::with_capacity(num_indices);
     let mut face_sizes = Vec::with_capacity(num_faces);
     for (c, &k) in centroid_of.iter().enumerate() {

@@ -138,13 +138,13 @@ pub fn refine<R: Sqrt3Rules>(mesh: &HalfEdgeMesh, rules: &R, refine_boundary: bo
     refine_with(mesh, rules, refine_boundary, &Rows::default()).0
 }
 
-/// [`refine`], and the child values of the vertex-varying `rows`.
-pub fn refine_with<R: Sqrt3Rules>(
+/// [`refine`], and the child values of the vertex-varying `rows` (or of any [`Primvar`]).
+pub fn refine_with<R: Sqrt3Rules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     refine_boundary: bool,
-    rows: &Rows,
-) -> (PolyMesh, Rows) {
+    rows: &P,
+) -> (PolyMesh, P) {
     let split = split_half_edges(mesh, refine_boundary);
     let (positions, indices, rows) = points_and_faces(mesh, rules, refine_boundary, &split, rows);
     let face_sizes = vec![3; mesh.num_half_edges()];
@@ -152,18 +152,18 @@ pub fn refine_with<R: Sqrt3Rules>(
 }
 
 /// The child positions, face list and rows of one √3 level, shared by both outputs.
-fn points_and_faces<R: Sqrt3Rules>(
+fn points_and_faces<R: Sqrt3Rules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     refine_boundary: bool,
     split: &[u32],
-    rows: &Rows,
-) -> (Vec<[f32; 3]>, Vec<u32>, Rows) {
+    rows: &P,
+) -> (Vec<[f32; 3]>, Vec<u32>, P) {
     let (first, num_child_vertices) = first_child_vertices(mesh, split);
     let layout = (split, &first[..], num_child_vertices);
     let positions = child_points(mesh, rules, refine_boundary, layout, &mesh.positions);
     let rows = if rows.is_empty() {
-        Rows::default()
+        rows.with_capacity(0)
     } else {
         child_points(mesh, rules, refine_boundary, layout, rows)
     };
@@ -187,13 +187,13 @@ pub fn child_mesh<R: Sqrt3Rules>(
     child_mesh_with(mesh, rules, refine_boundary, &Rows::default()).map(|(child, _)| child)
 }
 
-/// [`child_mesh`], and the child values of the vertex-varying `rows`.
-pub fn child_mesh_with<R: Sqrt3Rules>(
+/// [`child_mesh`], and the child values of the vertex-varying `rows` (or of any [`Primvar`]).
+pub fn child_mesh_with<R: Sqrt3Rules, P: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     refine_boundary: bool,
-    rows: &Rows,
-) -> Result<(HalfEdgeMesh, Rows)> {
+    rows: &P,
+) -> Result<(HalfEdgeMesh, P)> {
     let nh = mesh.num_half_edges();
     let triangles = nh == 3 * mesh.num_cells();
     if mesh.is_non_manifold() || !triangles || nh == 0 || has_pillow(mesh) {

@@ -1,0 +1,68 @@
+//! Stencil tables (`scheme::stencil_table`) on the benchmark tori: the time to build a table
+//! against one `subdivide` call, the time of `StencilTable::evaluate` (positions, width 3) per
+//! output point, and the table's bytes per output point. Median of 5 runs (3 for the builds).
+//! Run with `cargo bench --bench stencil`. Figures, not assertions.
+
+use std::time::{Duration, Instant};
+use subsurf::scheme::stencil_table;
+use subsurf::shapes::torus;
+use subsurf::{subdivide, Options, PolyMesh, Scheme, Tags};
+
+fn median(runs: usize, mut f: impl FnMut() -> Duration) -> Duration {
+    let mut times: Vec<Duration> = (0..runs).map(|_| f()).collect();
+    times.sort();
+    times[runs / 2]
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn main() {
+    let cases: Vec<(&str, PolyMesh, u32)> = vec![
+        ("torus 1M quads", torus(1000, 1000, 1.0, 0.25), 1),
+        ("torus 100k quads", torus(400, 250, 1.0, 0.25), 2),
+    ];
+    println!("| mesh | level | points out | subdivide ms | build ms | build / subdivide | evaluate ms | ns / point | bytes / point | entries / point |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for (name, mesh, level) in &cases {
+        let options = Options::new(Scheme::CatmullClark, *level);
+        let tags = Tags::default();
+        let subdivide_time = median(3, || {
+            let start = Instant::now();
+            let out = subdivide(mesh, &options).unwrap();
+            let t = start.elapsed();
+            drop(out);
+            t
+        });
+        let build_time = median(3, || {
+            let start = Instant::now();
+            let built = stencil_table(mesh, &options, &tags).unwrap();
+            let t = start.elapsed();
+            drop(built);
+            t
+        });
+        let (table, mut out) = stencil_table(mesh, &options, &tags).unwrap();
+        // A deformation per frame: the control positions scaled a little.
+        let mut frame = 0;
+        let evaluate_time = median(5, || {
+            frame += 1;
+            let s = 1.0 + 0.01 * frame as f32;
+            let control: Vec<f32> = mesh.positions.iter().map(|&x| x * s).collect();
+            let start = Instant::now();
+            table.evaluate(&control, 3, &mut out.positions).unwrap();
+            start.elapsed()
+        });
+        let points = table.num_stencils();
+        println!(
+            "| {name} | {level} | {points} | {:.0} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} |",
+            ms(subdivide_time),
+            ms(build_time),
+            build_time.as_secs_f64() / subdivide_time.as_secs_f64(),
+            ms(evaluate_time),
+            evaluate_time.as_secs_f64() * 1e9 / points as f64,
+            table.bytes() as f64 / points as f64,
+            table.indices().len() as f64 / points as f64,
+        );
+    }
+}
