@@ -165,12 +165,13 @@ impl Weights for RowSum<'_> {
 pub const FVAR_MAX_WIDTH: usize = 16;
 
 /// Sums weighted rows of a face-varying channel (`width` floats per value, at most
-/// [`FVAR_MAX_WIDTH`], summed in a fixed array: no allocation per value) for one new value whose vertex topology matches the
+/// [`FVAR_MAX_WIDTH`], summed in a fixed array: no allocation per value; `N` floats when `N` is
+/// not 0, a sum the compiler unrolls) for one new value whose vertex topology matches the
 /// surface's: corners resolve through `corner_values` (the value each parent face corner
 /// sees), face points are the child level's `face_values` by cell, and a rule's `vertex(v)` is
 /// the value `ends` gives for `v` (the moving vertex's value, or an edge's end values as one of
 /// its faces sees them).
-pub struct FVarSum<'a> {
+pub struct FVarSum<'a, const N: usize> {
     values: &'a [f32],
     width: usize,
     corner_values: &'a [u32],
@@ -180,21 +181,25 @@ pub struct FVarSum<'a> {
     scale: f32,
 }
 
-impl<'a> FVarSum<'a> {
+impl<'a, const N: usize> FVarSum<'a, N> {
     pub fn new(
         values: &'a [f32],
         width: usize,
         corner_values: &'a [u32],
         face_values: &'a [f32],
     ) -> Self {
-        let width = width.min(FVAR_MAX_WIDTH);
+        let width = if N > 0 { N } else { width.min(FVAR_MAX_WIDTH) };
         let sum = [0.0; FVAR_MAX_WIDTH];
         FVarSum { values, width, corner_values, face_values, ends: [(0, 0); 2], sum, scale: 1.0 }
     }
 
     #[inline(always)]
     fn width(&self) -> usize {
-        self.width
+        if N > 0 {
+            N
+        } else {
+            self.width
+        }
     }
 
     /// Writes into `out` the value whose weights `rule` gives, with `ends` resolving
@@ -224,7 +229,7 @@ impl<'a> FVarSum<'a> {
     }
 }
 
-impl Weights for FVarSum<'_> {
+impl<const N: usize> Weights for FVarSum<'_, N> {
     #[inline(always)]
     fn vertex(&mut self, v: u32, weight: f32) {
         let value = if self.ends[0].0 == v { self.ends[0].1 } else { self.ends[1].1 };

@@ -56,9 +56,9 @@ impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
 }
 
 /// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
-/// on `split` with `rules`. With `linear` (mode `all`, or a linear scheme), every
+/// on `split` with `rules`; `N` is the width when it is not 0 (a sum unrolled for it). With `linear` (mode `all`, or a linear scheme), every
 /// value is interpolated linearly. `sharp` is the parent level's sharpness.
-pub fn interpolate<F: ValueRules>(
+pub fn interpolate<F: ValueRules, const N: usize>(
     mesh: &HalfEdgeMesh,
     split: Split,
     rules: &F,
@@ -92,7 +92,7 @@ pub fn interpolate<F: ValueRules>(
         }
     }
     let edge_base = nv + face_points;
-    let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, &face_values);
+    let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, &face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
             *o = 0.5 * (x + y);

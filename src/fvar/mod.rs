@@ -163,7 +163,15 @@ impl FVarChannel {
         }
         let mut child = self.level.child_topology(mesh, split, sharp, mode);
         let (parent, linear) = (&self.level, linear || mode.linear);
-        interpolate(mesh, split, rules, parent, &mut child, linear, sharp);
+        // Natively, UVs get a sum unrolled for two floats (about 10 % of a textured call on the
+        // 1M-quad torus); in wasm it bought nothing measurable for 82 KB of code.
+        #[cfg(not(target_arch = "wasm32"))]
+        if parent.width == 2 {
+            interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp);
+            self.level = child;
+            return;
+        }
+        interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp);
         self.level = child;
     }
 
