@@ -114,8 +114,6 @@ pub struct FVarLevel {
     pub width: usize,
     pub values: Vec<f32>,
     pub corner_values: Vec<u32>,
-    /// Number of vertices: values below it are vertices' first values.
-    pub(crate) vertices: u32,
     pub(crate) tags: Vec<u8>,
     /// The vertices with more than one value, in vertex order: `[vertex, its second value,
     /// number of values]`.
@@ -129,20 +127,14 @@ pub struct FVarLevel {
 
 /// Builds a level's value numbering vertex by vertex (see [`FVarLevel`]).
 struct Numbering {
-    pub(crate) vertices: u32,
     tags: Vec<u8>,
-    pub(crate) several: Vec<[u32; 3]>,
+    several: Vec<[u32; 3]>,
     ends: Vec<(u32, [u32; 2])>,
 }
 
 impl Numbering {
     fn new(vertices: usize) -> Self {
-        Numbering {
-            vertices: vertices as u32,
-            tags: vec![0; vertices],
-            several: Vec::new(),
-            ends: Vec::new(),
-        }
+        Numbering { tags: vec![0; vertices], several: Vec::new(), ends: Vec::new() }
     }
 
     /// Gives vertex `v` `count` values and returns the index of its second (if any).
@@ -175,7 +167,6 @@ impl Numbering {
             width,
             values,
             corner_values,
-            vertices: self.vertices,
             tags: self.tags,
             several: self.several,
             ends: self.ends,
