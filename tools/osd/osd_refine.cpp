@@ -40,8 +40,10 @@
 // the `v` lines are then the limit positions (%.9g: the tests compare to 1e-5 of the size) and
 // each vertex gets a `vn` line (%.6g): the
 // cross product tan1 x tan2, normalised, or `vn 0 0 0` where the tangents are degenerate (zero,
-// or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). --limit with --fvar-linear or --varying is
-// refused.
+// or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). With --fvar-linear MODE too, the last level's
+// face-varying values are also taken to the limit (PrimvarRefinerReal<double>::LimitFaceVarying)
+// and those are the `vt` lines (same order, same count, same `f v/vt` corners). --limit with
+// --varying is refused.
 //
 // --time R refines and interpolates R times and prints, to stderr, the best and median wall
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
@@ -303,7 +305,7 @@ int main(int argc, char ** argv) {
         }
     }
     if (input.empty()) usage(2);
-    if (limit && (varying || fvarMode >= 0)) fail("--limit goes with neither --varying nor --fvar-linear");
+    if (limit && varying) fail("--limit does not go with --varying");
 
     Mesh mesh = readObj(input);
 
@@ -486,6 +488,12 @@ int main(int argc, char ** argv) {
         tan2.resize(n);
         Far::PrimvarRefinerReal<double> primvar(*refiner);
         primvar.Limit(perLevel[levels].data(), limitPoints, tan1, tan2);
+        if (fvar) {
+            // LimitFaceVarying must not read what it writes: a separate destination.
+            std::vector<Point2> limitUvs(uvLevels[levels].size());
+            primvar.LimitFaceVarying(uvLevels[levels].data(), limitUvs, 0);
+            uvLevels[levels].swap(limitUvs);
+        }
     }
 
     if (noOutput) return 0;
