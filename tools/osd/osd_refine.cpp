@@ -10,7 +10,7 @@
 //
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
-//              [--fvar-linear MODE] [--no-positions] [--varying] [--limit]
+//              [--fvar-linear MODE] [--no-positions] [--varying] [--limit] [--no-normals]
 //              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
 //
 // Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
@@ -42,8 +42,9 @@
 // cross product tan1 x tan2, normalised, or `vn 0 0 0` where the tangents are degenerate (zero,
 // or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). With --fvar-linear MODE too, the last level's
 // face-varying values are also taken to the limit (PrimvarRefinerReal<double>::LimitFaceVarying)
-// and those are the `vt` lines (same order, same count, same `f v/vt` corners). --limit with
-// --varying is refused.
+// and those are the `vt` lines (same order, same count, same `f v/vt` corners). --no-normals
+// leaves out the `vn` lines (the face-varying limit fixtures: the limit fixtures have the normals).
+// --limit with --varying is refused.
 //
 // --time R refines and interpolates R times and prints, to stderr, the best and median wall
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
@@ -231,7 +232,7 @@ void usage(int code) {
                  "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
                  "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
-                 "                  [--no-positions] [--varying] [--limit]\n"
+                 "                  [--no-positions] [--varying] [--limit] [--no-normals]\n"
                  "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
@@ -243,7 +244,7 @@ int main(int argc, char ** argv) {
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
     bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false, varying = false;
-    bool limit = false;
+    bool limit = false, noNormals = false;
     int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
@@ -284,6 +285,8 @@ int main(int argc, char ** argv) {
             varying = true;
         } else if (arg == "--limit") {
             limit = true;
+        } else if (arg == "--no-normals") {
+            noNormals = true;
         } else if (arg == "--ignore-tags") {
             ignoreTags = true;
         } else if (arg == "--time") {
@@ -509,7 +512,7 @@ int main(int argc, char ** argv) {
     if (!noPositions)
         for (Point3 const & p : points)
             std::fprintf(out, limit ? "v %.9g %.9g %.9g\n" : "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
-    for (size_t v = 0; v < tan1.size(); ++v) {
+    for (size_t v = 0; !noNormals && v < tan1.size(); ++v) {
         double const * a = tan1[v].p;
         double const * b = tan2[v].p;
         double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
