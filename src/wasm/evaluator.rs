@@ -50,7 +50,15 @@ fn lend_or_new(array: &JsValue, values: &[f32]) -> Float32Array {
 /// A Float32Array argument copied into `out`, or an error naming `field`.
 fn read_f32_into(value: &JsValue, field: &str, out: &mut Vec<f32>) -> Result<(), Error> {
     let Some(array) = value.dyn_ref::<Float32Array>() else {
-        return Err(wrong_array_type(field, "Float32Array", value));
+        let hint = if is_array(value) || is_typed_array(value) {
+            "; convert it with new Float32Array(array)"
+        } else {
+            ""
+        };
+        return Err(Error::InvalidAttribute(format!(
+            "{field} must be a Float32Array, got {}{hint}",
+            describe(value)
+        )));
     };
     out.resize(array.length() as usize, 0.0);
     array.copy_to(out);
@@ -133,7 +141,7 @@ impl Evaluator {
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] positions: &JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "EvaluatedFrame")] into: &JsValue,
     ) -> JsResult<JsValue> {
-        read_f32_into(positions, "positions", &mut self.control).map_err(js_error)?;
+        read_f32_into(positions, "evaluate: positions", &mut self.control).map_err(js_error)?;
         let outputs = 3 * self.inner.num_vertices();
         self.positions.resize(outputs, 0.0);
         let normals = if self.inner.has_normals() {
@@ -169,7 +177,7 @@ impl Evaluator {
         #[wasm_bindgen(unchecked_optional_param_type = "Float32Array")] into: &JsValue,
     ) -> JsResult<Float32Array> {
         let mut input = Vec::new();
-        read_f32_into(values, "values", &mut input).map_err(js_error)?;
+        read_f32_into(values, "evaluateAttribute: values", &mut input).map_err(js_error)?;
         let width = item_size as usize;
         if !(1..=attributes::MAX_ITEM_SIZE).contains(&width) {
             return Err(js_error(Error::InvalidAttribute(format!(
