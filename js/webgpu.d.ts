@@ -46,6 +46,8 @@ export interface StencilArrays {
    * finite.
    */
   tangentWeights?: [Float32Array, Float32Array];
+  /** The base mesh's vertex count (Evaluator.stencils() gives it). */
+  numControlVertices?: number;
 }
 
 /** What createGpuEvaluator reads of an `Evaluator` from `BaseMesh.evaluator()`. */
@@ -75,11 +77,11 @@ export function requestGpuDevice(options?: RequestGpuDeviceOptions): Promise<GPU
 /**
  * Uploads a stencil table to the device: `source` is an Evaluator (`BaseMesh.evaluator()`; its
  * `stencils()` and `numControlVertices` are read) or the table's arrays with
- * `numControlVertices`, the base mesh's vertex count. The arrays are checked once (parallel
+ * `numControlVertices`, the base mesh's vertex count (a field of the arrays or an argument). The arrays are checked once (parallel
  * lengths, offsets rising, indices in range) and copied; throws an Error naming the problem, or
  * the device limit a table exceeds.
  */
-export function createGpuEvaluator(device: GPUDeviceType, source: EvaluatorLike): GpuEvaluator;
+export function createGpuEvaluator(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number })): GpuEvaluator;
 export function createGpuEvaluator(device: GPUDeviceType, source: StencilArrays, numControlVertices: number): GpuEvaluator;
 
 export interface GpuReadBack {
@@ -92,7 +94,7 @@ export interface GpuReadBack {
 /** A stencil table on the GPU, with its output buffers. */
 export class GpuEvaluator {
   /** The same as createGpuEvaluator. */
-  constructor(device: GPUDeviceType, source: EvaluatorLike);
+  constructor(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number }));
   constructor(device: GPUDeviceType, source: StencilArrays, numControlVertices: number);
   readonly device: GPUDeviceType;
   readonly numControlVertices: number;

@@ -54,8 +54,8 @@ export async function requestGpuDevice(options = {}) {
 /**
  * Uploads a stencil table to `device` and returns a GpuEvaluator. `source` is either an
  * Evaluator from BaseMesh.evaluator() (its stencils() and numControlVertices are read) or the
- * arrays of a table, `{ offsets, indices, weights, tangentWeights? }`, with
- * `numControlVertices` given.
+ * arrays of a table, `{ offsets, indices, weights, tangentWeights?, numControlVertices? }`, with
+ * `numControlVertices` given here when the arrays do not carry it.
  */
 export function createGpuEvaluator(device, source, numControlVertices) {
   return new GpuEvaluator(device, source, numControlVertices);
@@ -72,6 +72,8 @@ export class GpuEvaluator {
       if (numControlVertices === undefined) numControlVertices = source.numControlVertices;
       stencils = source.stencils();
     }
+    // Evaluator.stencils() says it too.
+    if (numControlVertices === undefined && stencils) numControlVertices = stencils.numControlVertices;
     const table = checkTable(stencils, numControlVertices);
     this.device = device;
     this.numControlVertices = numControlVertices;

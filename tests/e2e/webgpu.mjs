@@ -342,7 +342,12 @@ async function run() {
       fromEvaluator.evaluate(control);
       result = await fromEvaluator.readBack();
       out.evaluatorLike = T.compare(result.normals, reference.normals);
-      for (const e of [gpu, plain, fromEvaluator]) e.destroy();
+      // Arrays carrying numControlVertices, as Evaluator.stencils() returns them.
+      const fromArrays = W.createGpuEvaluator(device, { ...table, numControlVertices });
+      fromArrays.evaluate(control);
+      result = await fromArrays.readBack();
+      out.arraysWithCount = T.compare(result.positions, reference.positions);
+      for (const e of [gpu, plain, fromEvaluator, fromArrays]) e.destroy();
       buffer.destroy();
       return out;
     });
@@ -355,6 +360,7 @@ async function run() {
     within('random table without tangents: positions', random.plainPositions);
     exact('random table without tangents: no normals', random.plainHasNormals, false);
     within('an Evaluator-shaped source (stencils(), numControlVertices): normals', random.evaluatorLike);
+    within('stencil arrays carrying numControlVertices: positions', random.arraysWithCount);
 
     // ---- over 65535 * 64 rows: the 2D dispatch
     const tall = await page.evaluate(async () => {

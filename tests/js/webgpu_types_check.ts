@@ -16,6 +16,8 @@ const stencils: StencilArrays = {
 const gpu: GpuEvaluator = createGpuEvaluator(device, stencils, 1);
 // What BaseMesh.evaluator() returns has stencils() and numControlVertices.
 const fromEvaluator = createGpuEvaluator(device, { numControlVertices: 1, stencils: () => stencils });
+// What Evaluator.stencils() returns carries numControlVertices.
+const fromArrays = createGpuEvaluator(device, { ...stencils, numControlVertices: 1 });
 
 gpu.evaluate(new Float32Array(3));
 const control: GPUBuffer = device.createBuffer({ size: 12, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
@@ -33,6 +35,7 @@ const same: GPUDevice = gpu.device;
 const wgsl: string = stencilShader({ normals: true });
 gpu.destroy();
 fromEvaluator.destroy();
+fromArrays.destroy();
 
 // @ts-expect-error: control must be a Float32Array or a GPUBuffer
 gpu.evaluate(new Float64Array(3));
