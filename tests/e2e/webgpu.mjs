@@ -465,6 +465,10 @@ async function run() {
       onLost.evaluate(T.randomControl(8, 10));
       await onLost.readBack();
       lostDevice.destroy();
+      // Before device.lost settles, evaluate cannot know (WebGPU ignores the work); readBack
+      // waits for the map to fail, by which time it does.
+      out.lostAtOnce = await m(() => onLost.evaluate(T.randomControl(8, 10)));
+      out.lostAtOnceReadBack = await m(() => onLost.readBack());
       await lostDevice.lost;
       out.lost = await m(() => onLost.evaluate(T.randomControl(8, 10)));
       out.lostReadBack = await m(() => onLost.readBack());
@@ -499,6 +503,8 @@ async function run() {
     says('destroyed evaluator: readBack', errors.destroyedReadBack, 'destroyed');
     says('lost device: evaluate', errors.lost, 'device was lost', 'destroyed', 'requestGpuDevice()', 'evaluator.evaluate');
     says('lost device: readBack', errors.lostReadBack, 'device was lost');
+    exact('lost device: evaluate right after device.destroy() does not throw', errors.lostAtOnce, null);
+    says('lost device: readBack right after device.destroy()', errors.lostAtOnceReadBack, 'device was lost', 'requestGpuDevice()');
     says('table over maxStorageBufferBindingSize', errors.tooBig, 'indices need 136000000 bytes', 'maxStorageBufferBindingSize 134217728', 'requestGpuDevice()');
     says('requestGpuDevice without navigator.gpu', errors.noGpu, 'WebGPU is not available in this browser', 'navigator.gpu is missing',
       'secure context', 'evaluator.evaluate');
