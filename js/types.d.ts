@@ -84,6 +84,21 @@ export interface SubdivideOptions {
    * boundaries and seams) or 'all' (everywhere, as bilinear). Default 'corners-plus1'.
    */
   fvarLinear?: FVarLinearMode;
+  /**
+   * Move the last level's points and every attribute (face-varying ones too) to the limit
+   * surface, as OpenSubdiv's `Limit` and `LimitFaceVarying` do. For a last level of
+   * 'catmull-clark', 'loop' and 'quad-triangle' on quads or on triangles; 'bilinear' and
+   * 'midpoint' points are on their limit already and stay; any other scheme throws. Default false.
+   */
+  limit?: boolean;
+  /**
+   * Add `normals` to the result: one unit normal per vertex, outward as the faces are wound.
+   * After 'catmull-clark', 'loop' and 'quad-triangle' on quads or triangles, the limit
+   * surface's normal (the cross product of its two tangents; a crease or corner gets one
+   * side's); after the other schemes, the normalised sum of the faces' area vectors around the
+   * vertex. Without `limit`, the points stay where the level put them. Default false.
+   */
+  normals?: boolean;
 }
 
 /** A polygon mesh with every field present, as `shape` returns it. */
@@ -136,4 +151,29 @@ export interface SubdivideResult extends PolygonMesh {
    * turns the result into one index buffer for WebGL.
    */
   attributes?: Record<string, AttributeChannel>;
+  /** Unit vertex normals (x, y, z per vertex) when `normals: true` was asked for. */
+  normals?: Float32Array;
+}
+
+/**
+ * An evaluator's stencil table (`Evaluator.stencils()`), OpenSubdiv's `Far::StencilTable` layout:
+ * output vertex i is the sum over k from `offsets[i]` to `offsets[i + 1]` of `weights[k]` times
+ * control vertex `indices[k]`.
+ */
+export interface StencilArrays {
+  /** One more than there are output vertices; `offsets[0]` is 0. */
+  offsets: Uint32Array;
+  indices: Uint32Array;
+  weights: Float32Array;
+  /** With normals: the two limit tangents' weights on the same entries; the normal is their cross product, normalised. */
+  tangentWeights?: [Float32Array, Float32Array];
+  numControlVertices: number;
+}
+
+/** One frame of `Evaluator.evaluate`: pass it back as `into` to reuse its arrays. */
+export interface EvaluatedFrame {
+  /** x, y, z per output vertex. */
+  positions: Float32Array;
+  /** Unit normals, x, y, z per output vertex, when the evaluator was built with `normals: true`. */
+  normals?: Float32Array;
 }

@@ -18,12 +18,13 @@
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
 //! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
 //! [`fvar`] (face-varying topology and values), [`attributes`] (data besides positions),
-//! [`stencil`] (stencil tables: refine once, evaluate every frame), [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
+//! [`stencil`] (stencil tables) and [`evaluator`] (refine once, evaluate every frame), [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
 //! and the wasm bindings.
 
 pub mod attributes;
 pub mod drawable;
 pub mod error;
+pub mod evaluator;
 pub mod fvar;
 pub mod io;
 pub mod limit;
@@ -43,6 +44,7 @@ pub mod tags;
 pub mod wasm;
 
 pub use error::{Error, Result};
+pub use evaluator::Evaluator;
 pub use mesh::{HalfEdgeMesh, PolyMesh};
 pub use options::{Boundary, CreaseMethod, FVarLinear};
 pub use scheme::{stencil_table, subdivide, subdivide_with_tags, Options, Scheme};

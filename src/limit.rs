@@ -1,12 +1,14 @@
-//! Evaluation at the limit (OpenSubdiv's `Far::PrimvarRefiner::Limit`): the limit masks of
-//! [`crate::rules::limit`] applied to one level's positions, and to its vertex-varying rows,
-//! through the same sinks that refine them ([`PointSum`], [`RowSum`]).
+//! Evaluation at the limit (OpenSubdiv's `Far::PrimvarRefiner::Limit` and `LimitFaceVarying`):
+//! the limit masks of [`crate::rules::limit`] applied to one level's positions, to its
+//! vertex-varying rows and to its face-varying values, through the same sinks that refine them;
+//! and vertex normals from faces, for the schemes without limit masks.
 
-use crate::mesh::HalfEdgeMesh;
-use crate::primvar::{PointSum, Primvar};
+use crate::fvar::{tag, FVarLevel};
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::primvar::{FVarSum, PointSum, Primvar, RowSum};
 use crate::rules::limit::{LimitRules, Neighbourhood};
 use crate::rules::Stencil;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// The limit positions, tangents and normals of one level's vertices, three floats each.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -34,6 +36,18 @@ pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
 /// of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under the
 /// position masks.
 pub fn evaluate<V: Primvar>(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &V) -> (LimitFrame, V) {
+    let (frame, rows, _) = evaluate_with_tangents(mesh, rules, rows, false);
+    (frame, rows)
+}
+
+/// [`evaluate`], and with `tangent_rows` also `rows` under the two tangent masks (for stencil
+/// tables of normals).
+pub fn evaluate_with_tangents<V: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &LimitRules,
+    rows: &V,
+    tangent_rows: bool,
+) -> (LimitFrame, V, Option<[V; 2]>) {
     let n = mesh.num_vertices();
     let points = &mesh.positions;
     let mut frame = LimitFrame {
@@ -44,6 +58,9 @@ pub fn evaluate<V: Primvar>(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &V) -
     let with_rows = !rows.is_empty();
     let mut out_rows = rows.with_capacity(if with_rows { n } else { 0 });
     let mut row_sum = rows.sum(&mesh.he_from, None);
+    let mut tangents =
+        (with_rows && tangent_rows).then(|| [rows.with_capacity(n), rows.with_capacity(n)]);
+    let mut recorded: [Stencil; 2] = Default::default();
     let mut hood = Neighbourhood::default();
     for v in mesh.vertex_indices() {
         rules.gather(mesh, v, &mut hood);
@@ -60,8 +77,108 @@ pub fn evaluate<V: Primvar>(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &V) -
         if with_rows {
             out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
         }
+        if let Some([first, second]) = tangents.as_mut() {
+            let [a, b] = &mut recorded;
+            a.sources.clear();
+            b.sources.clear();
+            rules.tangents(&hood, a, b);
+            first.push(&mut row_sum, |w| a.replay(w));
+            second.push(&mut row_sum, |w| b.replay(w));
+        }
     }
-    (frame, out_rows)
+    (frame, out_rows, tangents)
+}
+
+/// The limit of a face-varying channel on `mesh`, its last level (OpenSubdiv's
+/// `PrimvarRefiner::LimitFaceVarying`): a value whose neighbourhood matches the surface's takes
+/// the vertex's position mask, each neighbour read through the corner it is seen from; a
+/// crease value the B-spline crease limit `2/3 v + 1/6 (a + b)` along its span's bounding
+/// edges; a corner value stays; with `linear` (mode `all`, or a linear scheme) every value
+/// stays, as does every value of a vertex without faces.
+pub fn limit_face_varying(
+    mesh: &HalfEdgeMesh,
+    rules: &LimitRules,
+    level: &mut FVarLevel,
+    linear: bool,
+) {
+    if linear {
+        return;
+    }
+    let width = level.width;
+    let mut out = level.values.clone();
+    let row = |values: &[f32], i: u32| {
+        let start = i as usize * width;
+        values[start..start + width].to_vec()
+    };
+    let mut sum = FVarSum::<0>::new(&level.values, width, &level.corner_values, &[]);
+    let mut hood = Neighbourhood::default();
+    for v in mesh.vertex_indices() {
+        if mesh.out_half_edges(v).is_empty() {
+            continue;
+        }
+        let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
+        if level.tags[v as usize] & tag::MISMATCH == 0 {
+            rules.gather(mesh, v, &mut hood);
+            sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.position(&hood, w));
+            continue;
+        }
+        for s in 0..level.count(v) {
+            let value = level.value(v, s);
+            if level.tags[value as usize] & tag::CREASE == 0 {
+                continue;
+            }
+            let [start, end] = level.crease_ends(value);
+            let a = level.corner_values[mesh.next_in_cell(start) as usize];
+            let b = level.corner_values[mesh.prev_in_cell(end) as usize];
+            let target = &mut out[slot(value)];
+            target.fill(0.0);
+            RowSum::add(target, &row(&level.values, a), 1.0 / 6.0);
+            RowSum::add(target, &row(&level.values, b), 1.0 / 6.0);
+            RowSum::add(target, &row(&level.values, value), 2.0 / 3.0);
+        }
+    }
+    level.values = out;
+}
+
+/// Vertex normals from the faces of `poly`: at each vertex, the sum of the area vectors
+/// (Newell's normal, twice the area along the normal) of the faces around it, normalised;
+/// zero for a vertex without faces or where they cancel. What the schemes without limit
+/// masks (bilinear, midpoint, Doo-Sabin, √3, Quad/Triangle where quads meet triangles) give.
+pub fn face_normals(poly: &PolyMesh) -> Vec<f32> {
+    let mut out = vec![0.0; poly.positions.len()];
+    face_normals_into(&poly.positions, &poly.indices, &poly.face_sizes, &mut out);
+    out
+}
+
+/// [`face_normals`] of the faces `indices`, `face_sizes` over `positions`, into `out` (as long
+/// as `positions`; the faces' indices must be in range).
+pub fn face_normals_into(positions: &[f32], indices: &[u32], face_sizes: &[u32], out: &mut [f32]) {
+    let point = |v: u32| {
+        let i = 3 * v as usize;
+        DVec3::new(
+            f64::from(positions[i]),
+            f64::from(positions[i + 1]),
+            f64::from(positions[i + 2]),
+        )
+    };
+    let mut sums = vec![DVec3::ZERO; positions.len() / 3];
+    let mut start = 0;
+    for &n in face_sizes {
+        let face = &indices[start..start + n as usize];
+        start += n as usize;
+        let mut area = DVec3::ZERO;
+        for (i, &a) in face.iter().enumerate() {
+            area += point(a).cross(point(face[(i + 1) % face.len()]));
+        }
+        for &v in face {
+            sums[v as usize] += area;
+        }
+    }
+    for (sum, out) in sums.into_iter().zip(out.chunks_exact_mut(3)) {
+        let length = sum.length();
+        let unit = if length > 0.0 && length.is_finite() { sum / length } else { DVec3::ZERO };
+        out.copy_from_slice(&[unit.x as f32, unit.y as f32, unit.z as f32]);
+    }
 }
 
 /// The weights of vertex `vertex`'s limit position and tangents, recorded (for tests and for

@@ -108,6 +108,15 @@ pub struct Options {
     pub max_bytes: u64,
     /// Where face-varying channels (UVs) are linear rather than smooth.
     pub fvar_linear: FVarLinear,
+    /// Move the last level's points, vertex-varying and face-varying values to the limit
+    /// surface (OpenSubdiv's `PrimvarRefiner::Limit` and `LimitFaceVarying`). Defined when the
+    /// last level is Catmull-Clark, Loop or Quad/Triangle on quads or on triangles; bilinear
+    /// and midpoint points are already on their limit and stay.
+    pub limit: bool,
+    /// Give unit vertex normals: the limit normals after Catmull-Clark, Loop and
+    /// Quad/Triangle on quads or triangles (the points stay unless `limit`), normals from the
+    /// faces after any other scheme (see [`crate::refined::Refined::normals`]).
+    pub normals: bool,
 }
 
 impl Default for Options {
@@ -118,6 +127,8 @@ impl Default for Options {
             max_faces: DEFAULT_MAX_FACES,
             max_bytes: DEFAULT_MAX_BYTES,
             fvar_linear: FVarLinear::default(),
+            limit: false,
+            normals: false,
         }
     }
 }

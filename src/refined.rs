@@ -16,9 +16,11 @@ use std::borrow::Cow;
 pub struct Refined<'a> {
     form: Form<'a>,
     attributes: Vec<Attribute>,
-    /// The limit tangents and normals, when the limit was asked for
-    /// ([`crate::scheme::subdivide_limit`]); the positions are then the limit positions.
-    limit: Option<Box<[Vec<f32>; 3]>>,
+    /// The limit tangents of the last level's vertices, when its scheme has limit masks and
+    /// the limit or normals were asked for.
+    tangents: Option<Box<[Vec<f32>; 2]>>,
+    /// Unit vertex normals, when asked for ([`crate::options::Options::normals`]).
+    normals: Option<Vec<f32>>,
 }
 
 enum Form<'a> {
@@ -33,7 +35,7 @@ enum Form<'a> {
 impl<'a> Refined<'a> {
     /// A result whose faces are listed.
     pub(crate) fn poly(poly: PolyMesh, attributes: Vec<Attribute>) -> Self {
-        Refined { form: Form::Poly(poly), attributes, limit: None }
+        Refined { form: Form::Poly(poly), attributes, tangents: None, normals: None }
     }
 
     /// A result whose faces are the implicit quads of one split of `parent`.
@@ -45,37 +47,54 @@ impl<'a> Refined<'a> {
         Refined {
             form: Form::Quads { positions, parent: Box::new(parent) },
             attributes,
-            limit: None,
+            tangents: None,
+            normals: None,
         }
     }
 
-    /// A result at the limit: `poly`'s positions are limit positions, with the two limit
-    /// tangents and the unit normal of each vertex (three floats each).
-    pub(crate) fn limit(
+    /// A result with the limit tangents, and the unit normal of each vertex when asked for
+    /// (three floats each); `poly`'s positions are the limit positions or the level's, as the
+    /// call asked.
+    pub(crate) fn with_tangents(
         poly: PolyMesh,
         attributes: Vec<Attribute>,
-        [first, second]: [Vec<f32>; 2],
-        normals: Vec<f32>,
+        tangents: [Vec<f32>; 2],
+        normals: Option<Vec<f32>>,
     ) -> Self {
-        Refined {
-            form: Form::Poly(poly),
-            attributes,
-            limit: Some(Box::new([first, second, normals])),
+        Refined { form: Form::Poly(poly), attributes, tangents: Some(Box::new(tangents)), normals }
+    }
+
+    /// This result with vertex normals from its faces ([`crate::limit::face_normals`]) when it
+    /// has none yet (the faces become listed ones).
+    pub(crate) fn with_face_normals(self) -> Self {
+        if self.normals.is_some() {
+            return self;
         }
+        let Refined { form, attributes, .. } = self;
+        let poly =
+            Refined { form, attributes: Vec::new(), tangents: None, normals: None }.into_poly();
+        let normals = crate::limit::face_normals(&poly);
+        Refined { form: Form::Poly(poly), attributes, tangents: None, normals: Some(normals) }
     }
 
     /// The limit tangents (OpenSubdiv's `tan1` and `tan2`, three floats per vertex) when the
-    /// result is at the limit ([`crate::scheme::subdivide_limit`]).
+    /// last level's scheme has limit masks and the limit or normals were asked for.
     pub fn tangents(&self) -> Option<[&[f32]; 2]> {
-        self.limit.as_deref().map(|[a, b, _]| [&a[..], &b[..]])
+        self.tangents.as_deref().map(|[a, b]| [&a[..], &b[..]])
     }
 
-    /// The unit limit normals (three floats per vertex; zero where the tangents are degenerate)
-    /// when the result is at the limit: `tangents[0] × tangents[1]`, normalised, which points
+    /// Unit vertex normals (three floats per vertex; zero where there is none), when asked
+    /// for. After Catmull-Clark or Loop, the limit normal `tangents[0] × tangents[1]`;
+    /// otherwise the normalised sum of the faces' area vectors around the vertex. Either points
     /// to the side from which the faces are wound counter-clockwise (outward on a closed mesh
     /// wound so, as the OBJ convention has it).
     pub fn normals(&self) -> Option<&[f32]> {
-        self.limit.as_deref().map(|[_, _, n]| &n[..])
+        self.normals.as_deref()
+    }
+
+    /// Takes the normals out of the result.
+    pub fn take_normals(&mut self) -> Option<Vec<f32>> {
+        self.normals.take()
     }
 
     /// The refined attribute channels, in the order they were given.
@@ -86,7 +105,10 @@ impl<'a> Refined<'a> {
     /// The flat arrays and the attribute channels.
     pub fn into_parts(self) -> (PolyMesh, Vec<Attribute>) {
         let Refined { form, attributes, .. } = self;
-        (Refined { form, attributes: Vec::new(), limit: None }.into_poly(), attributes)
+        (
+            Refined { form, attributes: Vec::new(), tangents: None, normals: None }.into_poly(),
+            attributes,
+        )
     }
 
     pub fn positions(&self) -> &[f32] {

@@ -119,15 +119,7 @@ pub fn subdivide_mesh_refined(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_levels(
-        Cow::Owned(base),
-        options,
-        tags,
-        Rows::default(),
-        Vec::new(),
-        no_attributes,
-        false,
-    )
+    refine_levels(Cow::Owned(base), options, tags, Rows::default(), Vec::new(), no_attributes, None)
 }
 
 /// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
@@ -145,7 +137,7 @@ pub fn subdivide_mesh_borrowed<'a>(
         Rows::default(),
         Vec::new(),
         no_attributes,
-        false,
+        None,
     )
 }
 
@@ -169,7 +161,7 @@ pub fn subdivide_refined_with(
     tags: &Tags,
 ) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags, false)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
 }
 
 /// [`subdivide_mesh_refined`] with attribute channels.
@@ -179,7 +171,7 @@ pub fn subdivide_mesh_refined_with(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags, false)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
 }
 
 /// [`subdivide_mesh_borrowed`] with attribute channels.
@@ -189,7 +181,7 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags, false)
+    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags)
 }
 
 /// The stencil table of `mesh` under `options` and `tags` (see [`crate::stencil`]): for every
@@ -207,7 +199,8 @@ pub fn stencil_table(
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    build_stencil_table(Cow::Owned(base), options, tags)
+    let build = build_stencils(&base, &[], options, tags)?;
+    Ok((build.table, build.mesh))
 }
 
 /// [`stencil_table`] of an already built half-edge mesh.
@@ -216,20 +209,36 @@ pub fn stencil_table_mesh(
     options: &Options,
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
-    build_stencil_table(Cow::Borrowed(base), options, tags)
+    let build = build_stencils(base, &[], options, tags)?;
+    Ok((build.table, build.mesh))
 }
 
-fn build_stencil_table(
-    base: Cow<'_, HalfEdgeMesh>,
+/// What one stencil build gives: the table (with the tangent weights when `options.normals`
+/// and the last level has limit masks), the output mesh (its positions those of the control
+/// positions at build time), the refined face-varying channels of `attributes` (in their
+/// order; vertex-varying ones are left to the table), and the normals at build time.
+pub(crate) struct StencilBuild {
+    pub table: StencilTable,
+    pub mesh: PolyMesh,
+    pub face_varying: Vec<Attribute>,
+    pub normals: Option<Vec<f32>>,
+}
+
+/// Runs the levels of `options` once with stencils as the vertex-varying data (see
+/// [`crate::stencil`]) and the face-varying channels of `attributes` alongside.
+pub(crate) fn build_stencils(
+    base: &HalfEdgeMesh,
+    attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
-) -> Result<(StencilTable, PolyMesh)> {
-    check_guards(&base, options)?;
+) -> Result<StencilBuild> {
+    check_attributes(attributes, base)?;
+    check_guards(base, options)?;
     let levels = options.levels();
     let num_control = base.num_vertices();
     // At least one entry (8 bytes) and one offset (4) per output vertex: refused before any
     // work when even that does not fit; otherwise the entries left are each level's limit.
-    let vertices = predict(&base, options).vertices;
+    let vertices = predict(base, options).vertices;
     let offset_bytes = vertices.saturating_add(1).saturating_mul(4);
     let max_bytes = options.max_bytes;
     let too_large = |bytes: String| {
@@ -242,30 +251,38 @@ fn build_stencil_table(
         return Err(Error::TooLarge(too_large(format!("at least {least}"))));
     }
     let limit = usize::try_from((max_bytes - offset_bytes) / 8).unwrap_or(usize::MAX);
+    let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
+    let count = attributes.len();
     let mut stencils = None;
-    let refined = refine_levels(
-        base,
+    let mut tangents = None;
+    let mut refined = refine_levels(
+        Cow::Borrowed(base),
         options,
         tags,
         Stencils::identity(num_control, limit),
-        Vec::new(),
-        |last, _| {
+        fvar,
+        |last, fvar| {
             stencils = Some(last);
-            Vec::new()
+            attributes::unpack_all(Rows::default(), &Default::default(), fvar, &fvar_layout, count)
         },
-        false,
+        options.normals.then_some(&mut tangents),
     )?;
-    let poly = refined.into_poly();
+    let normals = refined.take_normals();
+    let (mesh, face_varying) = refined.into_parts();
     let stencils = stencils.unwrap_or_default();
-    let table = stencils.into_table(|| too_large(format!("more than {max_bytes}")))?;
-    if table.num_stencils() != poly.num_vertices() {
+    let what = || too_large(format!("more than {max_bytes}"));
+    let mut table = stencils.into_table(what)?;
+    if let Some([first, second]) = tangents {
+        table = table.with_tangents(first.into_table(what)?, second.into_table(what)?);
+    }
+    if table.num_stencils() != mesh.num_vertices() {
         return Err(Error::Unsupported(format!(
             "the stencil table has {} rows for {} output vertices; please report this mesh",
             table.num_stencils(),
-            poly.num_vertices()
+            mesh.num_vertices()
         )));
     }
-    Ok((table, poly))
+    Ok(StencilBuild { table, mesh, face_varying, normals })
 }
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
@@ -284,11 +301,10 @@ fn refine_with_attributes<'a>(
     attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
-    limit: bool,
 ) -> Result<Refined<'a>> {
     check_attributes(attributes, &base)?;
-    // At the limit, the two tangents and the normal add nine floats per vertex.
-    let limit_width = if limit { 9 } else { 0 };
+    // The two tangents and the normal add nine floats per vertex.
+    let limit_width = if options.limit || options.normals { 9 } else { 0 };
     let sizes = AttributeSizes {
         vertex_width: attributes
             .iter()
@@ -313,14 +329,14 @@ fn refine_with_attributes<'a>(
             Rows::default(),
             Vec::new(),
             no_attributes,
-            limit,
+            None,
         );
     }
     let (rows, layout) = attributes::pack(attributes, base.num_vertices());
     let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
     let count = attributes.len();
     let finish = |rows, fvar| attributes::unpack_all(rows, &layout, fvar, &fvar_layout, count);
-    refine_levels(base, options, tags, rows, fvar, finish, limit)
+    refine_levels(base, options, tags, rows, fvar, finish, None)
 }
 
 /// Subdivides `mesh` as `options` says and evaluates the last level at the limit (OpenSubdiv's
@@ -346,7 +362,8 @@ pub fn subdivide_limit_with(
     tags: &Tags,
 ) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags, true)
+    let options = Options { limit: true, normals: true, ..options.clone() };
+    refine_with_attributes(Cow::Owned(base), attributes, &options, tags)
 }
 
 /// [`subdivide_limit`] of an already built mesh, which is left to the caller.
@@ -355,7 +372,8 @@ pub fn subdivide_mesh_limit<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_with_attributes(Cow::Borrowed(base), &[], options, tags, true)
+    let options = Options { limit: true, normals: true, ..options.clone() };
+    refine_with_attributes(Cow::Borrowed(base), &[], &options, tags)
 }
 
 /// Refuses a limit of `options` that is not defined, before any work.
@@ -363,13 +381,19 @@ fn check_limit(options: &Options) -> Result<()> {
     match options.schemes.last() {
         None => {
             return Err(Error::Unsupported(
-                "the limit needs at least one level of catmull-clark or loop".to_string(),
+                "limit: true needs at least one level; use levels >= 1, or normals: true alone for the base mesh's face normals".to_string(),
             ))
         }
-        Some(Scheme::CatmullClark | Scheme::Loop | Scheme::QuadTriangle) => {}
+        Some(
+            Scheme::CatmullClark
+            | Scheme::Loop
+            | Scheme::QuadTriangle
+            | Scheme::Bilinear
+            | Scheme::Midpoint,
+        ) => {}
         Some(&scheme) => {
             return Err(Error::Unsupported(format!(
-                "the limit is defined for a last level of catmull-clark or loop, not {scheme}"
+                "limit: true is not available for a last level of {scheme} (subsurf has limit masks for catmull-clark, loop and quad-triangle, and bilinear and midpoint points are already on theirs); use normals: true without limit for normals from the faces, or end with a catmull-clark or loop level"
             )))
         }
     }
@@ -414,14 +438,41 @@ fn refine_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
+    rows: V,
+    fvar: Vec<FVarChannel>,
+    finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
+    tangent_rows: Option<&mut Option<[V; 2]>>,
+) -> Result<Refined<'a>> {
+    if options.limit {
+        check_limit(options)?;
+    }
+    let refined = run_levels(base, options, tags, rows, fvar, finish, tangent_rows)?;
+    Ok(if options.normals { refined.with_face_normals() } else { refined })
+}
+
+/// The scheme whose limit masks apply after a level of `scheme` on `mesh` (Quad/Triangle is
+/// Catmull-Clark on quads and Loop on triangles), if any.
+fn limit_scheme(scheme: Scheme, mesh: &HalfEdgeMesh) -> Option<Scheme> {
+    match scheme {
+        Scheme::CatmullClark | Scheme::Loop => Some(scheme),
+        Scheme::QuadTriangle if mesh.cell_size == 4 => Some(Scheme::CatmullClark),
+        Scheme::QuadTriangle if mesh.cell_size == 3 => Some(Scheme::Loop),
+        _ => None,
+    }
+}
+
+/// [`refine_levels`] without the face normals.
+fn run_levels<'a, V: Primvar>(
+    base: Cow<'a, HalfEdgeMesh>,
+    options: &Options,
+    tags: &Tags,
     mut rows: V,
     mut fvar: Vec<FVarChannel>,
     finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
-    limit: bool,
+    tangent_rows: Option<&mut Option<[V; 2]>>,
 ) -> Result<Refined<'a>> {
-    if limit {
-        check_limit(options)?;
-    }
+    // The limit masks run on the last level's mesh, for the limit or for its normals.
+    let masks_wanted = options.limit || options.normals;
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -449,7 +500,7 @@ fn refine_levels<'a, V: Primvar>(
     let mut last_scheme = Scheme::CatmullClark;
     // At the limit, OpenSubdiv's first face at each vertex, through runs of triangle splits
     // from the base mesh (see `crate::limit::FirstFaces`).
-    let mut first_faces = limit.then(|| FirstFaces::base(&mesh));
+    let mut first_faces = masks_wanted.then(|| FirstFaces::base(&mesh));
     for (level, &scheme) in options.schemes.iter().enumerate() {
         check_scheme(&mesh, scheme, boundary, level)?;
         // Quad/Triangle is Loop on triangles (Stam & Loop's rules reduce to Loop's there; see
@@ -462,7 +513,15 @@ fn refine_levels<'a, V: Primvar>(
             s => s,
         };
         let scheme = on_triangles(scheme);
-        last_scheme = scheme;
+        let masks = if masks_wanted { limit_scheme(scheme, &mesh) } else { None };
+        if options.limit && level + 1 == levels && masks.is_none() && scheme == Scheme::QuadTriangle
+        {
+            return Err(Error::Unsupported(format!(
+                "level {}: limit: true is not available for quad-triangle on a mesh with both quads and triangles (there are no limit masks where they meet); use normals: true without limit for normals from the faces",
+                level + 1
+            )));
+        }
+        last_scheme = masks.unwrap_or(scheme);
         let split_first = match (first_faces.take(), scheme) {
             (Some(f), Scheme::Loop | Scheme::Midpoint) if mesh.cell_size == 3 => {
                 Some(f.triangle_split(mesh.num_cells()))
@@ -470,7 +529,7 @@ fn refine_levels<'a, V: Primvar>(
             _ => None,
         };
         // The limit is taken on the last level's mesh, which is therefore built as any other.
-        let last = level + 1 == levels && !limit;
+        let last = level + 1 == levels && masks.is_none();
         if level_tags.is_none() && scheme.supports_tags() {
             // The tagged path: for the user's tags (base level), and for what only the crease
             // rules handle: boundary 'none', non-manifold input, smooth triangles. Decided for
@@ -609,21 +668,29 @@ fn refine_levels<'a, V: Primvar>(
             }
         };
     }
-    if limit {
-        if !matches!(last_scheme, Scheme::CatmullClark | Scheme::Loop) {
-            return Err(Error::Unsupported(format!(
-                "level {levels}: the limit is defined for catmull-clark and loop; quad-triangle on a mesh with quads has no limit masks"
-            )));
-        }
+    if masks_wanted {
         let starts = first_faces.as_ref().map(|f| &f.vertices[..]);
         let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
-        let (frame, rows) = crate::limit::evaluate(&mesh, &rules, &rows);
+        let want_tangent_rows = tangent_rows.is_some();
+        let (frame, limit_rows, tangents) =
+            crate::limit::evaluate_with_tangents(&mesh, &rules, &rows, want_tangent_rows);
         let mut poly = mesh.to_poly();
-        poly.positions = frame.positions;
+        if options.limit {
+            poly.positions = frame.positions;
+            rows = limit_rows;
+            let linear = fvar_mode == FVarLinear::All;
+            for channel in fvar.iter_mut().filter(|c| c.analysed) {
+                crate::limit::limit_face_varying(&mesh, &rules, &mut channel.level, linear);
+            }
+        }
+        if let Some(out) = tangent_rows {
+            *out = tangents;
+        }
         if let Some(tags) = level_tags.as_ref().filter(|t| t.has_holes()) {
             poly = drop_holes(poly, tags, &mut fvar);
         }
-        return Ok(Refined::limit(poly, finish(rows, fvar), frame.tangents, frame.normals));
+        let normals = options.normals.then_some(frame.normals);
+        return Ok(Refined::with_tangents(poly, finish(rows, fvar), frame.tangents, normals));
     }
     Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)))
 }

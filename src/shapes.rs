@@ -481,35 +481,7 @@ fn for_each_half_edge(mesh: &PolyMesh, mut f: impl FnMut(u32, u32)) {
 /// sum of its fan triangles' area vectors.
 pub fn vertex_normals(mesh: &PolyMesh) -> crate::Result<Vec<f32>> {
     mesh.check_arrays()?;
-    let p = |v: u32| {
-        let i = 3 * v as usize;
-        [mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]]
-    };
-    let mut normals = vec![0.0f32; mesh.positions.len()];
-    let mut start = 0usize;
-    for &n in &mesh.face_sizes {
-        let face = &mesh.indices[start..start + n as usize];
-        start += n as usize;
-        let Some(&first) = face.first() else { continue };
-        let origin = p(first);
-        let mut area = [0.0f32; 3];
-        for pair in face[1..].windows(2) {
-            let c = cross(sub(p(pair[0]), origin), sub(p(pair[1]), origin));
-            area = [area[0] + c[0], area[1] + c[1], area[2] + c[2]];
-        }
-        for &v in face {
-            let out = &mut normals[3 * v as usize..3 * v as usize + 3];
-            for k in 0..3 {
-                out[k] += area[k];
-            }
-        }
-    }
-    for normal in normals.chunks_exact_mut(3) {
-        let length = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
-        let scale = if length > f32::MIN_POSITIVE { 1.0 / length } else { 0.0 };
-        normal.iter_mut().for_each(|x| *x *= scale);
-    }
-    Ok(normals)
+    Ok(crate::limit::face_normals(mesh))
 }
 
 /// Every edge of the faces once, as pairs of vertex indices `[a0, b0, a1, b1, ...]` in the

@@ -123,7 +123,7 @@ impl Stencils {
             (indices, weights)
         };
         let num_control = self.num_control as u32;
-        Ok(StencilTable { num_control, offsets, indices, weights })
+        Ok(StencilTable { num_control, offsets, indices, weights, tangent_weights: None })
     }
 }
 
@@ -290,12 +290,17 @@ impl Primvar for Stencils {
 /// `offsets[i]..offsets[i + 1]`. Each row's control indices ascend and its weights sum to 1.
 /// OpenSubdiv's `Far::StencilTable` (sizes, offsets, indices, weights) with the sizes left out
 /// (they are the differences of the offsets).
+///
+/// A table for normals also holds, on the same entries, the weights of the two limit tangents
+/// (OpenSubdiv's `Far::LimitStencilTable` and its `du`/`dv` weights): a row's control vertices
+/// are then those any of the three sums reads, with zero weights where one does not.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StencilTable {
     num_control: u32,
     offsets: Vec<u32>,
     indices: Vec<u32>,
     weights: Vec<f32>,
+    tangent_weights: Option<Box<[Vec<f32>; 2]>>,
 }
 
 impl StencilTable {
@@ -332,9 +337,97 @@ impl StencilTable {
         Some((&self.indices[start..end], &self.weights[start..end]))
     }
 
-    /// Bytes of the three arrays: 4 per offset, 8 per entry.
+    /// The weights of the two limit tangents on the same entries, when the table has them.
+    pub fn tangent_weights(&self) -> Option<[&[f32]; 2]> {
+        self.tangent_weights.as_deref().map(|[a, b]| [&a[..], &b[..]])
+    }
+
+    /// Bytes of the arrays: 4 per offset, 8 per entry (16 with tangent weights).
     pub fn bytes(&self) -> u64 {
-        4 * self.offsets.len() as u64 + 8 * self.indices.len() as u64
+        let per_entry = if self.tangent_weights.is_some() { 16 } else { 8 };
+        4 * self.offsets.len() as u64 + per_entry * self.indices.len() as u64
+    }
+
+    /// This table of positions with the tables of the two tangents (same rows, same control
+    /// vertices) merged into it: each row's entries become the union of the three rows'.
+    pub(crate) fn with_tangents(self, first: StencilTable, second: StencilTable) -> StencilTable {
+        let rows = self.num_stencils();
+        let capacity = self.indices.len() + self.indices.len() / 4;
+        let mut offsets = Vec::with_capacity(rows + 1);
+        let mut indices = Vec::with_capacity(capacity);
+        let mut weights = [(); 3].map(|_| Vec::with_capacity(capacity));
+        offsets.push(0);
+        let tables = [&self, &first, &second];
+        for i in 0..rows {
+            let mut rows = tables.map(|t| t.stencil(i).unwrap_or((&[], &[])));
+            // A merge of three ascending lists: take the smallest head, from each list that has it.
+            while let Some(c) = rows.iter().filter_map(|(c, _)| c.first()).min().copied() {
+                indices.push(c);
+                for ((controls, w), out) in rows.iter_mut().zip(&mut weights) {
+                    if controls.first() == Some(&c) {
+                        out.push(w[0]);
+                        *controls = &controls[1..];
+                        *w = &w[1..];
+                    } else {
+                        out.push(0.0);
+                    }
+                }
+            }
+            offsets.push(indices.len() as u32);
+        }
+        let [weights, t1, t2] = weights;
+        StencilTable {
+            num_control: self.num_control,
+            offsets,
+            indices,
+            weights,
+            tangent_weights: Some(Box::new([t1, t2])),
+        }
+    }
+
+    /// Writes the output positions of `control` (3 floats per control vertex) into `positions`
+    /// and, when the table has tangent weights, the unit normals (`tan1 × tan2` normalised,
+    /// zero where that is zero or not finite, as [`crate::limit::normal`]) into `normals`, in one
+    /// pass over the entries. Lengths as [`StencilTable::evaluate`]; `normals` must be 3 floats
+    /// per stencil when the table has tangents, else it is left alone.
+    pub fn evaluate_with_normals(
+        &self,
+        control: &[f32],
+        positions: &mut [f32],
+        normals: &mut [f32],
+    ) -> Result<()> {
+        let Some([t1, t2]) = self.tangent_weights() else {
+            return self.evaluate(control, 3, positions);
+        };
+        if normals.len() != positions.len() {
+            return Err(Error::InvalidAttribute(format!(
+                "stencil table: normals has {} floats; expected 3 per output vertex ({} of them)",
+                normals.len(),
+                self.num_stencils()
+            )));
+        }
+        self.check_lengths(control.len(), 3, positions.len())?;
+        let (control, _) = control.as_chunks::<3>();
+        let (normals, _) = normals.as_chunks_mut::<3>();
+        let (positions, _) = positions.as_chunks_mut::<3>();
+        let rows = self.offsets.windows(2).zip(positions).zip(normals);
+        for ((row, position), normal) in rows {
+            let range = row[0] as usize..row[1] as usize;
+            let (mut p, mut a, mut b) = ([0.0f32; 3], [0.0f32; 3], [0.0f32; 3]);
+            let entries = self.indices[range.clone()].iter().zip(&self.weights[range.clone()]);
+            let entries = entries.zip(&t1[range.clone()]).zip(&t2[range]);
+            for (((&c, &w), &w1), &w2) in entries {
+                let x = &control[c as usize];
+                for k in 0..3 {
+                    p[k] += x[k] * w;
+                    a[k] += x[k] * w1;
+                    b[k] += x[k] * w2;
+                }
+            }
+            *position = p;
+            *normal = crate::limit::normal(a, b);
+        }
+        Ok(())
     }
 
     /// Writes into `out` the output values of `control` (`width` floats per control vertex:
@@ -343,6 +436,21 @@ impl StencilTable {
     /// and `out` `width` per stencil, else an [`Error::InvalidAttribute`] and `out` is untouched.
     /// Rows do not depend on each other, so they can be split among threads as they are.
     pub fn evaluate(&self, control: &[f32], width: usize, out: &mut [f32]) -> Result<()> {
+        self.check_lengths(control.len(), width, out.len())?;
+        match width {
+            0 => {}
+            1 => self.evaluate_n::<1>(control, out),
+            2 => self.evaluate_n::<2>(control, out),
+            3 => self.evaluate_n::<3>(control, out),
+            4 => self.evaluate_n::<4>(control, out),
+            _ => self.evaluate_rows(control, width, out),
+        }
+        Ok(())
+    }
+
+    /// An error unless `control` holds `width` floats per control vertex and `out` `width` per
+    /// stencil.
+    fn check_lengths(&self, control: usize, width: usize, out: usize) -> Result<()> {
         let expect = |what: &str, count: usize, len: usize| {
             if Some(len) == count.checked_mul(width) {
                 Ok(())
@@ -353,17 +461,8 @@ impl StencilTable {
                 )))
             }
         };
-        expect("control", self.num_control_vertices(), control.len())?;
-        expect("out", self.num_stencils(), out.len())?;
-        match width {
-            0 => {}
-            1 => self.evaluate_n::<1>(control, out),
-            2 => self.evaluate_n::<2>(control, out),
-            3 => self.evaluate_n::<3>(control, out),
-            4 => self.evaluate_n::<4>(control, out),
-            _ => self.evaluate_rows(control, width, out),
-        }
-        Ok(())
+        expect("control", self.num_control_vertices(), control)?;
+        expect("out", self.num_stencils(), out)
     }
 
     /// [`StencilTable::evaluate`] for a width known at compile time: each row summed in

@@ -248,10 +248,29 @@ fn what_has_no_limit_is_an_error() {
     };
     assert!(refuse(Options::new(Scheme::CatmullClark, 0), &cube).contains("at least one level"));
     assert!(refuse(Options::new(Scheme::DooSabin, 1), &cube).contains("doo-sabin"));
-    assert!(refuse(Options::new(Scheme::Bilinear, 2), &cube).contains("bilinear"));
+    assert!(refuse(Options::new(Scheme::Sqrt3, 1), &shapes::icosahedron()).contains("sqrt3"));
     let average = Options::new(Scheme::CatmullClark, 1).with_boundary(Boundary::Average);
     assert!(refuse(average, &cube).contains("average"));
-    assert!(refuse(Options::new(Scheme::QuadTriangle, 1), &cube).contains("quad-triangle"));
+    // Quad/Triangle where quads meet triangles (a prism: quad sides, triangle caps).
+    assert!(
+        refuse(Options::new(Scheme::QuadTriangle, 1), &shapes::prism(3)).contains("quad-triangle")
+    );
+    // Quad/Triangle on quads is Catmull-Clark, limit included.
+    let quad_triangle = subdivide_limit(&cube, &Options::new(Scheme::QuadTriangle, 2), &none);
+    let catmull_clark = limit(&cube, Scheme::CatmullClark, 2, &none);
+    // (Its host numbers vertices its own way: each point must be one of Catmull-Clark's.)
+    let (a, b) = (quad_triangle.unwrap(), catmull_clark);
+    let (a, b) = (a.positions().as_chunks::<3>().0, b.positions().as_chunks::<3>().0);
+    assert_eq!(a.len(), b.len());
+    for p in a {
+        let near = |q: &&[f32; 3]| (0..3).all(|k| (p[k] - q[k]).abs() < 1e-6);
+        assert!(b.iter().any(|q| near(&q)), "{p:?} is not a Catmull-Clark limit point");
+    }
+    // Bilinear points are on their limit already: they stay, with normals from the faces.
+    let bilinear = subdivide_limit(&cube, &Options::new(Scheme::Bilinear, 2), &none).unwrap();
+    let plain = subsurf::subdivide(&cube, &Options::new(Scheme::Bilinear, 2)).unwrap();
+    assert_eq!(bilinear.positions(), &plain.positions[..]);
+    assert_eq!(bilinear.normals().unwrap(), &subsurf::shapes::vertex_normals(&plain).unwrap()[..]);
     // Quad/Triangle on triangles is Loop, which has a limit.
     assert!(subdivide_limit(&shapes::icosahedron(), &Options::new(Scheme::QuadTriangle, 1), &none)
         .is_ok());

@@ -4,16 +4,19 @@
 //! `creasemethod`, `smoothtriangles`) are used unless `--ignore-tags`; `--boundary` and
 //! `--crease-method` override the file's `interpolateboundary` and `creasemethod`. Texture
 //! coordinates (`vt`, `f v/vt`) are refined as a face-varying channel (`--fvar-linear` says where
-//! they stay linear) and written to the output, unless `--ignore-uv`.
+//! they stay linear) and written to the output, unless `--ignore-uv`. `--limit` moves the
+//! result to the limit surface and writes its normals (`vn`); `--normals` writes the normals
+//! alone.
 
 use std::process::ExitCode;
 use std::time::Instant;
-use subsurf::io::{read_obj_with, write_obj_with, ObjReadOptions};
+use subsurf::io::{read_obj_with, write_obj_with_normals, ObjReadOptions};
 use subsurf::scheme::{Boundary, Options, Scheme};
 use subsurf::{CreaseMethod, FVarLinear, HalfEdgeMesh};
 
 const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE] [--crease-method M] [--ignore-tags]
-               [--fvar-linear MODE] [--ignore-uv] [--max-faces N] [--max-bytes N] [--stats]
+               [--fvar-linear MODE] [--ignore-uv] [--limit] [--normals]
+               [--max-faces N] [--max-bytes N] [--stats]
                INPUT.obj [-o OUTPUT.obj]
 
   --scheme SCHEME    catmull-clark (default), loop, doo-sabin, quad-triangle, sqrt3,
@@ -29,6 +32,12 @@ const USAGE: &str = "usage: subsurf --scheme SCHEME --levels N [--boundary MODE]
                      corners-only, corners-plus1 (default), corners-plus2, boundaries, all
                      (OpenSubdiv's FVarLinearInterpolation)
   --ignore-uv        ignore the file's texture coordinates; the output has none
+  --limit            move the points and texture coordinates to the limit surface
+                     (last level catmull-clark, loop or quad-triangle; bilinear and
+                     midpoint points stay) and write one normal per vertex (vn)
+  --normals          write one normal per vertex (vn) without moving the points: limit
+                     normals after catmull-clark, loop and quad-triangle, from the faces
+                     after the other schemes
   --max-faces N      refuse when the result would have more faces (default 16777216)
   --max-bytes N      refuse when the result's arrays would take more bytes (default 1073741824)
   --stats            print counts and timings to stderr
@@ -41,6 +50,8 @@ struct Args {
     ignore_tags: bool,
     fvar_linear: FVarLinear,
     ignore_uv: bool,
+    limit: bool,
+    normals: bool,
     max_faces: u64,
     max_bytes: u64,
     stats: bool,
@@ -56,6 +67,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         ignore_tags: false,
         fvar_linear: FVarLinear::default(),
         ignore_uv: false,
+        limit: false,
+        normals: false,
         max_faces: subsurf::scheme::DEFAULT_MAX_FACES,
         max_bytes: subsurf::scheme::DEFAULT_MAX_BYTES,
         stats: false,
@@ -96,6 +109,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 parsed.fvar_linear = value("--fvar-linear")?.parse().map_err(|e| format!("{e}"))?
             }
             "--ignore-uv" => parsed.ignore_uv = true,
+            "--limit" => parsed.limit = true,
+            "--normals" => parsed.normals = true,
             "--max-bytes" => {
                 let v = value("--max-bytes")?;
                 parsed.max_bytes =
@@ -157,18 +172,21 @@ fn run(args: Args) -> Result<(), String> {
         max_faces: args.max_faces,
         max_bytes: args.max_bytes,
         fvar_linear: args.fvar_linear,
+        limit: args.limit,
+        normals: args.limit || args.normals,
     };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
     let refine = |channels| {
         subsurf::scheme::subdivide_mesh_borrowed_with(&mesh, channels, &options, &tags)
-            .map(|refined| refined.into_parts())
+            .map(|mut refined| (refined.take_normals(), refined.into_parts()))
     };
-    let (output, channels) = refine(&attributes).map_err(|e| e.to_string())?;
+    let (normals, (output, channels)) = refine(&attributes).map_err(|e| e.to_string())?;
     let refine_time = t.elapsed();
 
     let t = Instant::now();
-    let text = write_obj_with(&output, &channels).map_err(|e| e.to_string())?;
+    let text = write_obj_with_normals(&output, &channels, normals.as_deref())
+        .map_err(|e| e.to_string())?;
     match &args.output {
         Some(path) => {
             std::fs::write(path, text).map_err(|e| format!("cannot write '{path}': {e}"))?

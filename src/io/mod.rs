@@ -3,6 +3,6 @@
 pub mod obj;
 
 pub use obj::{
-    read_obj, read_obj_with, read_obj_with_tags, write_obj, write_obj_with, ObjMesh,
-    ObjReadOptions, UV,
+    read_obj, read_obj_with, read_obj_with_tags, write_obj, write_obj_with, write_obj_with_normals,
+    ObjMesh, ObjReadOptions, UV,
 };

@@ -516,7 +516,7 @@ fn resolve_index(
 
 /// Writes `v` and `f` lines (1-based indices).
 pub fn write_obj(mesh: &PolyMesh) -> String {
-    write(mesh, None)
+    write(mesh, None, None)
 }
 
 /// Writes `v` and `f` lines and, when `attributes` has a channel named [`UV`], its values as
@@ -525,8 +525,27 @@ pub fn write_obj(mesh: &PolyMesh) -> String {
 /// place for them). The `uv` channel is checked against the mesh first (its lengths and
 /// indices, and an item size of 1 to 3, the components a `vt` line holds).
 pub fn write_obj_with(mesh: &PolyMesh, attributes: &[Attribute]) -> Result<String> {
+    write_obj_with_normals(mesh, attributes, None)
+}
+
+/// [`write_obj_with`], and with `normals` (3 floats per vertex) one `vn` line per vertex, in
+/// vertex order, each corner naming its vertex's (`f v/vt/vn`, or `f v//vn` without UVs).
+pub fn write_obj_with_normals(
+    mesh: &PolyMesh,
+    attributes: &[Attribute],
+    normals: Option<&[f32]>,
+) -> Result<String> {
+    if let Some(normals) = normals {
+        if normals.len() != mesh.positions.len() {
+            return Err(Error::InvalidAttribute(format!(
+                "normals: {} floats for {} vertices; give 3 per vertex",
+                normals.len(),
+                mesh.num_vertices()
+            )));
+        }
+    }
     let Some(uv) = attributes.iter().find(|a| a.name == UV) else {
-        return Ok(write(mesh, None));
+        return Ok(write(mesh, None, normals));
     };
     attributes::validate(std::slice::from_ref(uv), mesh.num_vertices(), mesh.indices.len())?;
     if uv.item_size > 3 {
@@ -535,13 +554,15 @@ pub fn write_obj_with(mesh: &PolyMesh, attributes: &[Attribute]) -> Result<Strin
             uv.item_size
         )));
     }
-    Ok(write(mesh, Some(uv)))
+    Ok(write(mesh, Some(uv), normals))
 }
 
-fn write(mesh: &PolyMesh, uv: Option<&Attribute>) -> String {
+fn write(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -> String {
     let uv_len = uv.map_or(0, |a| a.values.len() * 12);
-    let mut out =
-        String::with_capacity(mesh.positions.len() * 12 + mesh.indices.len() * 16 + uv_len);
+    let normals_len = normals.map_or(0, |n| n.len() * 12);
+    let mut out = String::with_capacity(
+        mesh.positions.len() * 12 + mesh.indices.len() * 16 + uv_len + normals_len,
+    );
     for p in mesh.positions.chunks_exact(3) {
         let _ = writeln!(out, "v {} {} {}", p[0], p[1], p[2]);
     }
@@ -554,6 +575,9 @@ fn write(mesh: &PolyMesh, uv: Option<&Attribute>) -> String {
             out.push('\n');
         }
     }
+    for n in normals.unwrap_or_default().chunks_exact(3) {
+        let _ = writeln!(out, "vn {} {} {}", n[0], n[1], n[2]);
+    }
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
         let Some(face) = mesh.indices.get(start..start + n as usize) else {
@@ -561,14 +585,15 @@ fn write(mesh: &PolyMesh, uv: Option<&Attribute>) -> String {
         };
         out.push('f');
         for (k, &i) in face.iter().enumerate() {
-            match uv.map(|a| a.indices.as_ref().map_or(i, |indices| indices[start + k])) {
-                Some(t) => {
-                    let _ = write!(out, " {}/{}", i as u64 + 1, t as u64 + 1);
-                }
-                None => {
-                    let _ = write!(out, " {}", i as u64 + 1);
-                }
-            }
+            let v = i as u64 + 1;
+            let t =
+                uv.map(|a| a.indices.as_ref().map_or(i, |indices| indices[start + k]) as u64 + 1);
+            let _ = match (t, normals.is_some()) {
+                (Some(t), false) => write!(out, " {v}/{t}"),
+                (Some(t), true) => write!(out, " {v}/{t}/{v}"),
+                (None, true) => write!(out, " {v}//{v}"),
+                (None, false) => write!(out, " {v}"),
+            };
         }
         out.push('\n');
         start += n as usize;

@@ -95,6 +95,17 @@ impl Stencil {
     pub fn total(&self) -> f32 {
         self.sources.iter().map(|&(_, w)| w).sum()
     }
+
+    /// Gives the recorded weights to `w`, in order.
+    pub fn replay(&self, w: &mut impl Weights) {
+        for &(source, weight) in &self.sources {
+            match source {
+                Source::Vertex(v) => w.vertex(v, weight),
+                Source::Corner(h) => w.corner(h, weight),
+                Source::FacePoint(c) => w.face_point(c, weight),
+            }
+        }
+    }
 }
 
 impl Weights for Stencil {

@@ -23,12 +23,14 @@ use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
+mod evaluator;
 mod input;
 mod messages;
 mod options;
 mod output;
 mod viewer;
 
+pub use evaluator::Evaluator;
 use input::*;
 use messages::*;
 use options::*;
@@ -46,7 +48,7 @@ const TYPESCRIPT_SECTION: &'static str = TYPESCRIPT_TYPES;
 const TYPESCRIPT_TYPES: &str = include_str!("../../js/types.d.ts");
 
 /// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
-const OPTION_KEYS: [&str; 11] = [
+const OPTION_KEYS: [&str; 13] = [
     "scheme",
     "levels",
     "boundary",
@@ -58,6 +60,8 @@ const OPTION_KEYS: [&str; 11] = [
     "creaseMethod",
     "smoothTriangles",
     "fvarLinear",
+    "limit",
+    "normals",
 ];
 
 /// Mesh fields read from the input object.
@@ -67,8 +71,8 @@ const MESH_KEYS: [&str; 4] = ["positions", "indices", "faceSizes", "attributes"]
 const CHANNEL_KEYS: [&str; 3] = ["array", "itemSize", "indices"];
 
 /// Mesh fields accepted and ignored: the extra output of `subdivide`, `readObj` and
-/// `toDrawable`.
-const IGNORED_MESH_KEYS: [&str; 3] = ["triangles", "tags", "origins"];
+/// `toDrawable`, and its normals.
+const IGNORED_MESH_KEYS: [&str; 4] = ["triangles", "tags", "origins", "normals"];
 
 /// The most levels one call accepts (the library's [`scheme::MAX_LEVELS`]).
 pub const MAX_LEVELS: u32 = scheme::MAX_LEVELS as u32;
@@ -211,6 +215,20 @@ impl BaseMesh {
             .map_err(js_error)?;
         self.attributes[i] = channel;
         Ok(())
+    }
+
+    /// An evaluator for `options` (levels, scheme, tags, `limit`, `normals`): this mesh refined
+    /// once, its stencils recorded, so that `evaluator.evaluate(positions)` gives
+    /// `subdivide`'s positions (and normals) for new positions of the same faces without
+    /// refining again. The evaluator owns what it needs: it stays usable after this mesh is
+    /// changed or freed. Throws what `subdivide` would throw for the same options, and when the
+    /// stencil table would pass `maxBytes`.
+    pub fn evaluator(
+        &self,
+        #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
+    ) -> JsResult<Evaluator> {
+        let (options, tags) = read_options(options).map_err(js_error)?;
+        Evaluator::build(&self.mesh, &self.attributes, &options, &tags)
     }
 
     /// The number of vertices, which `setPositions` takes 3 numbers each of.

@@ -47,6 +47,8 @@ pub(super) fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
     let max_faces = read_limit(&field("maxFaces")?, "maxFaces")?;
     let max_bytes = read_limit(&field("maxBytes")?, "maxBytes")?;
     let fvar_linear = read_fvar_linear(&field("fvarLinear")?)?;
+    let limit = read_bool(&field("limit")?, "limit")?;
+    let normals = read_bool(&field("normals")?, "normals")?;
     let defaults = Options::default();
     let options = Options {
         schemes,
@@ -54,6 +56,9 @@ pub(super) fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
         max_faces: max_faces.unwrap_or(defaults.max_faces),
         max_bytes: max_bytes.unwrap_or(defaults.max_bytes),
         fvar_linear: fvar_linear.unwrap_or(defaults.fvar_linear),
+        limit: limit.unwrap_or(false),
+        // The limit surface is shaded with its own normals.
+        normals: normals.unwrap_or(false),
     };
     Ok((options, read_tags(&field)?))
 }
@@ -106,16 +111,20 @@ pub(super) fn read_tags(field: &dyn Fn(&str) -> Result<JsValue, Error>) -> Resul
             }
         };
     }
-    let smooth = field("smoothTriangles")?;
-    if !smooth.is_undefined() {
-        tags.smooth_triangles = smooth.as_bool().ok_or_else(|| {
-            option_error(format!(
-                "smoothTriangles must be true or false, got {}",
-                describe(&smooth)
-            ))
-        })?;
+    if let Some(smooth) = read_bool(&field("smoothTriangles")?, "smoothTriangles")? {
+        tags.smooth_triangles = smooth;
     }
     Ok(tags)
+}
+
+/// A boolean option, `None` when absent.
+fn read_bool(value: &JsValue, name: &str) -> Result<Option<bool>, Error> {
+    if value.is_undefined() {
+        return Ok(None);
+    }
+    value.as_bool().map(Some).ok_or_else(|| {
+        option_error(format!("{name} must be true or false, got {}", describe(value)))
+    })
 }
 
 /// `{ <items>: Uint32Array, sharpness: Float32Array }` of `creases` or `corners`.

@@ -99,6 +99,9 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     set_field(&object, "indices", &indices.finish()?)?;
     set_field(&object, "faceSizes", &face_sizes.finish()?)?;
     set_field(&object, "triangles", &triangles.finish()?)?;
+    if let Some(normals) = refined.normals() {
+        set_field(&object, "normals", &Float32Array::from(normals))?;
+    }
     if !refined.attributes().is_empty() {
         set_field(&object, "attributes", &channels_object(refined.attributes())?)?;
     }

@@ -599,3 +599,6 @@ mod attributes;
 
 #[path = "wasm_fvar.rs"]
 mod fvar;
+
+#[path = "wasm_limit.rs"]
+mod limit;

@@ -10,7 +10,7 @@
 //
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
-//              [--fvar-linear MODE] [--no-positions] [--varying] [--limit]
+//              [--fvar-linear MODE] [--no-positions] [--varying] [--limit] [--no-normals]
 //              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
 //
 // Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
@@ -40,8 +40,11 @@
 // the `v` lines are then the limit positions (%.9g: the tests compare to 1e-5 of the size) and
 // each vertex gets a `vn` line (%.6g): the
 // cross product tan1 x tan2, normalised, or `vn 0 0 0` where the tangents are degenerate (zero,
-// or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). --limit with --fvar-linear or --varying is
-// refused.
+// or |tan1 x tan2| < 1e-6 |tan1| |tan2|: no plane). With --fvar-linear MODE too, the last level's
+// face-varying values are also taken to the limit (PrimvarRefinerReal<double>::LimitFaceVarying)
+// and those are the `vt` lines (same order, same count, same `f v/vt` corners). --no-normals
+// leaves out the `vn` lines (the face-varying limit fixtures: the limit fixtures have the normals).
+// --limit with --varying is refused.
 //
 // --time R refines and interpolates R times and prints, to stderr, the best and median wall
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
@@ -229,7 +232,7 @@ void usage(int code) {
                  "usage: osd_refine [--scheme catmark|loop|bilinear] [--levels N]\n"
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
                  "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
-                 "                  [--no-positions] [--varying] [--limit]\n"
+                 "                  [--no-positions] [--varying] [--limit] [--no-normals]\n"
                  "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
@@ -241,7 +244,7 @@ int main(int argc, char ** argv) {
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
     bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false, varying = false;
-    bool limit = false;
+    bool limit = false, noNormals = false;
     int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
@@ -282,6 +285,8 @@ int main(int argc, char ** argv) {
             varying = true;
         } else if (arg == "--limit") {
             limit = true;
+        } else if (arg == "--no-normals") {
+            noNormals = true;
         } else if (arg == "--ignore-tags") {
             ignoreTags = true;
         } else if (arg == "--time") {
@@ -303,7 +308,7 @@ int main(int argc, char ** argv) {
         }
     }
     if (input.empty()) usage(2);
-    if (limit && (varying || fvarMode >= 0)) fail("--limit goes with neither --varying nor --fvar-linear");
+    if (limit && varying) fail("--limit does not go with --varying");
 
     Mesh mesh = readObj(input);
 
@@ -486,6 +491,12 @@ int main(int argc, char ** argv) {
         tan2.resize(n);
         Far::PrimvarRefinerReal<double> primvar(*refiner);
         primvar.Limit(perLevel[levels].data(), limitPoints, tan1, tan2);
+        if (fvar) {
+            // LimitFaceVarying must not read what it writes: a separate destination.
+            std::vector<Point2> limitUvs(uvLevels[levels].size());
+            primvar.LimitFaceVarying(uvLevels[levels].data(), limitUvs, 0);
+            uvLevels[levels].swap(limitUvs);
+        }
     }
 
     if (noOutput) return 0;
@@ -501,7 +512,7 @@ int main(int argc, char ** argv) {
     if (!noPositions)
         for (Point3 const & p : points)
             std::fprintf(out, limit ? "v %.9g %.9g %.9g\n" : "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
-    for (size_t v = 0; v < tan1.size(); ++v) {
+    for (size_t v = 0; !noNormals && v < tan1.size(); ++v) {
         double const * a = tan1[v].p;
         double const * b = tan2[v].p;
         double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};

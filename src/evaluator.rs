@@ -1,0 +1,184 @@
+//! Refine once, evaluate every frame: an [`Evaluator`] holds a call's output topology and its
+//! stencil table ([`crate::stencil`]), so that new control positions (a skinned or morphed
+//! cage) give the call's positions and normals with one sparse product and no topology work.
+//! OpenSubdiv's `Far::StencilTableFactory` / `LimitStencilTableFactory` with
+//! `Osd::CpuEvaluator::EvalStencils`, behind one type.
+
+use crate::attributes::Attribute;
+use crate::error::{Error, Result};
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::options::Options;
+use crate::scheme::build_stencils;
+use crate::stencil::StencilTable;
+use crate::tags::Tags;
+
+/// Where an evaluator's normals come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum NormalSource {
+    /// Not asked for.
+    None,
+    /// The table's tangent weights (the last level has limit masks).
+    Tangents,
+    /// The output faces, recomputed per frame (bilinear, midpoint, Doo-Sabin, √3).
+    Faces,
+}
+
+/// A subdivision call prepared for many control positions of the same mesh: its output faces
+/// and face-varying channels (fixed), its stencil table, and how its normals are made. Equal,
+/// frame by frame, to [`crate::scheme::subdivide_with_attributes`] with the same options,
+/// `limit` and `normals` included, to f32 rounding.
+#[derive(Clone, Debug)]
+pub struct Evaluator {
+    table: StencilTable,
+    mesh: PolyMesh,
+    attributes: Vec<Attribute>,
+    normals: Option<Vec<f32>>,
+    source: NormalSource,
+}
+
+impl Evaluator {
+    /// Refines `base` once as `options` and `tags` say, recording the stencils. `attributes`
+    /// are the base mesh's channels: face-varying ones are refined now (their values are fixed
+    /// from then on), vertex-varying ones through the table. Errors as the subdivision would
+    /// give them, and [`Error::TooLarge`] when the table passes `options.max_bytes`.
+    pub fn new(
+        base: &HalfEdgeMesh,
+        attributes: &[Attribute],
+        options: &Options,
+        tags: &Tags,
+    ) -> Result<Self> {
+        let build = build_stencils(base, attributes, options, tags)?;
+        let source = match (options.normals, build.table.tangent_weights().is_some()) {
+            (false, _) => NormalSource::None,
+            (true, true) => NormalSource::Tangents,
+            (true, false) => NormalSource::Faces,
+        };
+        let mut face_varying = build.face_varying.into_iter();
+        let mut channels = Vec::with_capacity(attributes.len());
+        for a in attributes {
+            if a.is_face_varying() {
+                channels.extend(face_varying.next());
+                continue;
+            }
+            let mut values = vec![0.0; build.table.num_stencils() * a.item_size];
+            build.table.evaluate(&a.values, a.item_size, &mut values)?;
+            channels.push(Attribute::vertex(a.name.clone(), a.item_size, values));
+        }
+        Ok(Evaluator {
+            table: build.table,
+            mesh: build.mesh,
+            attributes: channels,
+            normals: build.normals,
+            source,
+        })
+    }
+
+    /// The stencil table (positions, and the tangents' weights when normals come from it).
+    pub fn table(&self) -> &StencilTable {
+        &self.table
+    }
+
+    /// The output mesh: faces, and the positions at build time.
+    pub fn mesh(&self) -> &PolyMesh {
+        &self.mesh
+    }
+
+    /// The output channels at build time, in the order given: face-varying ones refined,
+    /// vertex-varying ones evaluated from the values given to [`Evaluator::new`].
+    pub fn attributes(&self) -> &[Attribute] {
+        &self.attributes
+    }
+
+    /// The normals at build time, when asked for.
+    pub fn normals(&self) -> Option<&[f32]> {
+        self.normals.as_deref()
+    }
+
+    /// True when [`Evaluator::evaluate`] writes normals.
+    pub fn has_normals(&self) -> bool {
+        self.source != NormalSource::None
+    }
+
+    /// Number of control (base) vertices the evaluator reads.
+    pub fn num_control_vertices(&self) -> usize {
+        self.table.num_control_vertices()
+    }
+
+    /// Number of output vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.table.num_stencils()
+    }
+
+    /// The output positions (and, when asked for at build time, unit normals) for new
+    /// `control` positions: 3 finite floats per control vertex in, 3 per output vertex out.
+    /// Errors name what is wrong and leave the outputs untouched.
+    pub fn evaluate(
+        &self,
+        control: &[f32],
+        positions: &mut [f32],
+        normals: Option<&mut [f32]>,
+    ) -> Result<()> {
+        let expected = 3 * self.num_control_vertices();
+        if control.len() != expected {
+            return Err(Error::InvalidAttribute(format!(
+                "evaluate: positions has {} floats; expected {expected} (x, y, z for each of the {} vertices of the mesh the evaluator was built from)",
+                control.len(),
+                self.num_control_vertices()
+            )));
+        }
+        if let Some(i) = control.iter().position(|x| !x.is_finite()) {
+            return Err(Error::InvalidAttribute(format!(
+                "evaluate: positions[{i}] (vertex {}, {}) is {}; every coordinate must be finite",
+                i / 3,
+                ["x", "y", "z"][i % 3],
+                control[i]
+            )));
+        }
+        let outputs = 3 * self.num_vertices();
+        if positions.len() != outputs {
+            return Err(Error::InvalidAttribute(format!(
+                "evaluate: the output positions have {} floats; expected {outputs}",
+                positions.len()
+            )));
+        }
+        match (self.source, normals) {
+            (NormalSource::None, _) => self.table.evaluate(control, 3, positions),
+            (_, None) => Err(Error::InvalidAttribute(
+                "evaluate: this evaluator gives normals; pass an output for them".into(),
+            )),
+            (_, Some(normals)) if normals.len() != outputs => {
+                Err(Error::InvalidAttribute(format!(
+                    "evaluate: the output normals have {} floats; expected {outputs}",
+                    normals.len()
+                )))
+            }
+            (NormalSource::Tangents, Some(normals)) => {
+                self.table.evaluate_with_normals(control, positions, normals)
+            }
+            (NormalSource::Faces, Some(normals)) => {
+                self.table.evaluate(control, 3, positions)?;
+                let mesh = &self.mesh;
+                crate::limit::face_normals_into(
+                    positions,
+                    &mesh.indices,
+                    &mesh.face_sizes,
+                    normals,
+                );
+                Ok(())
+            }
+        }
+    }
+
+    /// Any vertex-varying data (colours, skin weights, a morph target's deltas) through the
+    /// positions' stencils: `width` floats per control vertex in, per output vertex out.
+    pub fn evaluate_attribute(&self, values: &[f32], width: usize, out: &mut [f32]) -> Result<()> {
+        let vertices = self.num_control_vertices();
+        if Some(values.len()) != vertices.checked_mul(width) {
+            return Err(Error::InvalidAttribute(format!(
+                "evaluateAttribute: values has {} floats; expected {width} (itemSize) for each of the {vertices} vertices of the mesh the evaluator was built from",
+                values.len()
+            )));
+        }
+        self.table.evaluate(values, width, out)
+    }
+}

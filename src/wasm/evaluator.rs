@@ -1,0 +1,192 @@
+//! `Evaluator`: the JS face of [`crate::evaluator::Evaluator`] (refine once, evaluate every
+//! frame). Conversion and errors only.
+
+use super::*;
+use crate::evaluator;
+
+/// A subdivision prepared for many frames: made by `BaseMesh.evaluator(options)`.
+///
+/// ```js
+/// const evaluator = base.evaluator({ levels: 2, limit: true, normals: true });
+/// const { indices, triangles } = evaluator.result();   // the topology, once
+/// let frame;
+/// // every frame:
+/// frame = evaluator.evaluate(skinnedPositions, frame);  // { positions, normals }
+/// ```
+#[wasm_bindgen]
+pub struct Evaluator {
+    inner: evaluator::Evaluator,
+    /// Scratch for the control positions and the outputs, kept between frames.
+    control: Vec<f32>,
+    positions: Vec<f32>,
+    normals: Vec<f32>,
+}
+
+impl Evaluator {
+    pub(super) fn build(
+        mesh: &HalfEdgeMesh,
+        attributes: &[Attribute],
+        options: &Options,
+        tags: &Tags,
+    ) -> JsResult<Evaluator> {
+        let inner = evaluator::Evaluator::new(mesh, attributes, options, tags).map_err(js_error)?;
+        Ok(Evaluator { inner, control: Vec::new(), positions: Vec::new(), normals: Vec::new() })
+    }
+}
+
+/// `array` when it is a Float32Array of `len` elements that is not a view of wasm memory, else
+/// a fresh one; filled with `values`.
+fn lend_or_new(array: &JsValue, values: &[f32]) -> Float32Array {
+    if let Some(lent) = array.dyn_ref::<Float32Array>() {
+        if lent.length() as usize == values.len() && JsValue::from(lent.buffer()) != memory_buffer()
+        {
+            lent.copy_from(values);
+            return lent.clone();
+        }
+    }
+    Float32Array::from(values)
+}
+
+/// A Float32Array argument copied into `out`, or an error naming `field`.
+fn read_f32_into(value: &JsValue, field: &str, out: &mut Vec<f32>) -> Result<(), Error> {
+    let Some(array) = value.dyn_ref::<Float32Array>() else {
+        let hint = if is_array(value) || is_typed_array(value) {
+            "; convert it with new Float32Array(array)"
+        } else {
+            ""
+        };
+        return Err(Error::InvalidAttribute(format!(
+            "{field} must be a Float32Array, got {}{hint}",
+            describe(value)
+        )));
+    };
+    out.resize(array.length() as usize, 0.0);
+    array.copy_to(out);
+    Ok(())
+}
+
+#[wasm_bindgen]
+impl Evaluator {
+    /// Number of vertices of the mesh it was built from (`evaluate` takes 3 floats each).
+    #[wasm_bindgen(getter, js_name = numControlVertices)]
+    pub fn num_control_vertices(&self) -> u32 {
+        self.inner.num_control_vertices() as u32
+    }
+
+    /// Number of output vertices (stencils).
+    #[wasm_bindgen(getter, js_name = numVertices)]
+    pub fn num_vertices(&self) -> u32 {
+        self.inner.num_vertices() as u32
+    }
+
+    /// True when `evaluate` gives normals (`normals: true` at build time).
+    #[wasm_bindgen(getter, js_name = hasNormals)]
+    pub fn has_normals(&self) -> bool {
+        self.inner.has_normals()
+    }
+
+    /// What `subdivide` returns for the positions at build time: positions, indices, faceSizes,
+    /// triangles, attributes (face-varying ones fixed from then on) and normals. Fresh arrays.
+    #[wasm_bindgen(unchecked_return_type = "SubdivideResult")]
+    pub fn result(&self) -> JsResult<JsValue> {
+        let mesh = self.inner.mesh();
+        let object = mesh_object(mesh)?;
+        set_field(&object, "triangles", &Uint32Array::from(&mesh.triangles()[..]))?;
+        if let Some(normals) = self.inner.normals() {
+            set_field(&object, "normals", &Float32Array::from(normals))?;
+        }
+        if !self.inner.attributes().is_empty() {
+            set_field(&object, "attributes", &channels_object(self.inner.attributes())?)?;
+        }
+        Ok(object)
+    }
+
+    /// The stencil table as fresh typed arrays, for a shader of your own: output vertex `i` is
+    /// the sum over `k` from `offsets[i]` to `offsets[i + 1]` of `weights[k]` times control
+    /// vertex `indices[k]`; with normals, `tangentWeights` are the two limit tangents' weights
+    /// on the same entries (the normal is their cross product, normalised).
+    #[wasm_bindgen(unchecked_return_type = "StencilArrays")]
+    pub fn stencils(&self) -> JsResult<JsValue> {
+        let table = self.inner.table();
+        let object = Object::new();
+        set_field(&object, "offsets", &Uint32Array::from(table.offsets()))?;
+        set_field(&object, "indices", &Uint32Array::from(table.indices()))?;
+        set_field(&object, "weights", &Float32Array::from(table.weights()))?;
+        if let Some([first, second]) = table.tangent_weights() {
+            let pair = Array::of2(&Float32Array::from(first), &Float32Array::from(second));
+            set_field(&object, "tangentWeights", &pair)?;
+        }
+        set_field(
+            &object,
+            "numControlVertices",
+            &JsValue::from(table.num_control_vertices() as u32),
+        )?;
+        Ok(object.into())
+    }
+
+    /// Bytes of the stencil table (4 per offset, 8 per entry, 16 with tangent weights).
+    #[wasm_bindgen(getter, js_name = stencilBytes)]
+    pub fn stencil_bytes(&self) -> f64 {
+        self.inner.table().bytes() as f64
+    }
+
+    /// The output for new control `positions` (a Float32Array, x, y, z per vertex of the mesh
+    /// it was built from, all finite): `{ positions, normals? }`, equal to `subdivide`'s with
+    /// the same options. `into`, an earlier frame, lends its arrays (written over when their
+    /// lengths fit). Throws, leaving `into` as it was, on a wrong type, length or a non-finite
+    /// value.
+    #[wasm_bindgen(unchecked_return_type = "EvaluatedFrame")]
+    pub fn evaluate(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] positions: &JsValue,
+        #[wasm_bindgen(unchecked_optional_param_type = "EvaluatedFrame")] into: &JsValue,
+    ) -> JsResult<JsValue> {
+        read_f32_into(positions, "evaluate: positions", &mut self.control).map_err(js_error)?;
+        let outputs = 3 * self.inner.num_vertices();
+        self.positions.resize(outputs, 0.0);
+        let normals = if self.inner.has_normals() {
+            self.normals.resize(outputs, 0.0);
+            Some(&mut self.normals[..])
+        } else {
+            None
+        };
+        self.inner.evaluate(&self.control, &mut self.positions, normals).map_err(js_error)?;
+        let lent = |key: &str| -> JsValue {
+            if into.is_object() {
+                Reflect::get(into, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
+            } else {
+                JsValue::UNDEFINED
+            }
+        };
+        let object = Object::new();
+        set_field(&object, "positions", &lend_or_new(&lent("positions"), &self.positions))?;
+        if self.inner.has_normals() {
+            set_field(&object, "normals", &lend_or_new(&lent("normals"), &self.normals))?;
+        }
+        Ok(object.into())
+    }
+
+    /// Vertex-varying data through the same stencils (colours, skin weights, a morph target):
+    /// `values` holds `itemSize` floats per control vertex; returns `itemSize` per output
+    /// vertex, into `into` when it is a Float32Array of that length.
+    #[wasm_bindgen(js_name = evaluateAttribute)]
+    pub fn evaluate_attribute(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "Float32Array")] values: &JsValue,
+        #[wasm_bindgen(js_name = itemSize)] item_size: u32,
+        #[wasm_bindgen(unchecked_optional_param_type = "Float32Array")] into: &JsValue,
+    ) -> JsResult<Float32Array> {
+        let mut input = Vec::new();
+        read_f32_into(values, "evaluateAttribute: values", &mut input).map_err(js_error)?;
+        let width = item_size as usize;
+        if !(1..=attributes::MAX_ITEM_SIZE).contains(&width) {
+            return Err(js_error(Error::InvalidAttribute(format!(
+                "evaluateAttribute: itemSize is {item_size}; give 1 to {} floats per vertex",
+                attributes::MAX_ITEM_SIZE
+            ))));
+        }
+        let mut out = vec![0.0; width * self.inner.num_vertices()];
+        self.inner.evaluate_attribute(&input, width, &mut out).map_err(js_error)?;
+        Ok(lend_or_new(into, &out))
+    }
+}

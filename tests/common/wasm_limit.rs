@@ -1,0 +1,163 @@
+//! The limit options (`limit`, `normals`) and the evaluator (`BaseMesh.evaluator`) through the
+//! JS API. The Rust API's results, which `tests/osd_limit_agreement.rs` and
+//! `tests/evaluator.rs` check against OpenSubdiv and `subdivide`, are the expected values here:
+//! the bindings must pass them through unchanged.
+use super::*;
+use subsurf::wasm::BaseMesh;
+use subsurf::{scheme, Options, PolyMesh, Scheme, Tags};
+
+fn cube_poly() -> PolyMesh {
+    let (positions, indices, face_sizes) = cube_arrays();
+    PolyMesh { positions, indices, face_sizes }
+}
+
+fn limit_options(levels: f64, limit: bool, normals: bool) -> JsValue {
+    object(&[
+        ("levels", JsValue::from_f64(levels)),
+        ("limit", JsValue::from_bool(limit)),
+        ("normals", JsValue::from_bool(normals)),
+    ])
+}
+
+/// A twist of the cube's corners, as an animation frame would move them.
+fn twisted(positions: &[f32], t: f32) -> Vec<f32> {
+    let mut out = positions.to_vec();
+    for p in out.chunks_exact_mut(3) {
+        let (s, c) = (t * p[1]).sin_cos();
+        let (x, z) = (p[0], p[2]);
+        p[0] = c * x - s * z;
+        p[2] = s * x + c * z;
+    }
+    out
+}
+
+fn within(a: &[f32], b: &[f32], tolerance: f32) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tolerance)
+}
+
+#[wasm_bindgen_test]
+fn limit_and_normals_options_give_the_rust_results() {
+    let options = Options { limit: true, normals: true, ..Options::new(Scheme::CatmullClark, 2) };
+    let mut want =
+        scheme::subdivide_refined_with(&cube_poly(), &[], &options, &Tags::default()).unwrap();
+    let want_normals = want.take_normals().unwrap();
+    let out = ok(subdivide(&cube(), &limit_options(2.0, true, true)));
+    assert_eq!(f32s(&out, "positions"), want.positions());
+    assert_eq!(f32s(&out, "normals"), want_normals);
+    for n in want_normals.chunks_exact(3) {
+        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((length - 1.0).abs() < 1e-5);
+    }
+    // Without `normals`, none; with `normals` alone, the points stay where the level put them.
+    let limit_only = ok(subdivide(&cube(), &limit_options(2.0, true, false)));
+    assert!(field(&limit_only, "normals").is_undefined());
+    let normals_only = ok(subdivide(&cube(), &limit_options(2.0, false, true)));
+    let plain = ok(subdivide(&cube(), &levels(2.0)));
+    assert_eq!(f32s(&normals_only, "positions"), f32s(&plain, "positions"));
+    assert_eq!(f32s(&normals_only, "normals"), want_normals);
+}
+
+#[wasm_bindgen_test]
+fn limit_options_are_checked() {
+    let bad = object(&[("limit", JsValue::from_f64(1.0))]);
+    assert_mentions(&thrown(subdivide(&cube(), &bad)), &["limit must be true or false, got 1"]);
+    let bad = object(&[("normals", "yes".into())]);
+    assert_mentions(&thrown(subdivide(&cube(), &bad)), &["normals must be true or false"]);
+    let doo_sabin = object(&[("scheme", "doo-sabin".into()), ("limit", JsValue::TRUE)]);
+    let message = thrown(subdivide(&cube(), &doo_sabin));
+    assert_mentions(&message, &["limit: true is not available", "doo-sabin", "normals: true"]);
+    // The module keeps working.
+    assert!(subdivide(&cube(), &limit_options(1.0, true, true)).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn an_evaluator_gives_subdivide_for_every_frame() {
+    let base = BaseMesh::new(&cube()).unwrap();
+    let options = limit_options(2.0, true, true);
+    let mut evaluator = base.evaluator(&options).unwrap();
+    assert_eq!(evaluator.num_control_vertices(), 8);
+    assert_eq!(evaluator.num_vertices(), 98);
+    assert!(evaluator.has_normals());
+    // At build time, the result is subdivide's.
+    let built = ok(evaluator.result());
+    let plain = ok(subdivide(&cube(), &options));
+    for key in ["indices", "faceSizes", "triangles"] {
+        assert_eq!(u32s(&built, key), u32s(&plain, key), "{key}");
+    }
+    assert_eq!(f32s(&built, "positions"), f32s(&plain, "positions"));
+    let mut frame = JsValue::UNDEFINED;
+    for t in [0.0f32, 0.5, 1.3] {
+        let moved = twisted(&cube_arrays().0, t);
+        let next = ok(evaluator.evaluate(&Float32Array::from(&moved[..]).into(), &frame));
+        if !frame.is_undefined() {
+            assert!(Object::is(&field(&next, "positions"), &field(&frame, "positions")), "reused");
+        }
+        let (_, i, s) = cube_arrays();
+        let want = ok(subdivide(&js_mesh(&moved, &i, Some(&s)), &options));
+        assert!(within(&f32s(&next, "positions"), &f32s(&want, "positions"), 1e-5), "t {t}");
+        assert!(within(&f32s(&next, "normals"), &f32s(&want, "normals"), 1e-4), "t {t}");
+        frame = next;
+    }
+    // The stencil arrays: CSR rows over the control vertices.
+    let stencils = ok(evaluator.stencils());
+    let offsets = u32s(&stencils, "offsets");
+    assert_eq!(offsets.len(), 99);
+    assert_eq!(*offsets.last().unwrap() as usize, u32s(&stencils, "indices").len());
+    assert_eq!(f32s(&stencils, "weights").len(), u32s(&stencils, "indices").len());
+    let tangents: Array = field(&stencils, "tangentWeights").dyn_into().unwrap();
+    assert_eq!(tangents.length(), 2);
+    // Vertex-varying data through the same stencils: the positions themselves.
+    let same = evaluator
+        .evaluate_attribute(
+            &Float32Array::from(&cube_arrays().0[..]).into(),
+            3,
+            &JsValue::UNDEFINED,
+        )
+        .unwrap();
+    assert!(within(&same.to_vec(), &f32s(&plain, "positions"), 1e-5));
+}
+
+#[wasm_bindgen_test]
+fn evaluator_errors_are_clear_and_it_keeps_working() {
+    let base = BaseMesh::new(&cube()).unwrap();
+    let mut evaluator = base.evaluator(&limit_options(1.0, true, true)).unwrap();
+    let positions: JsValue = Float32Array::from(&cube_arrays().0[..]).into();
+    let good = ok(evaluator.evaluate(&positions, &JsValue::UNDEFINED));
+    let array: JsValue = Array::of3(&1.into(), &2.into(), &3.into()).into();
+    assert_mentions(
+        &thrown(evaluator.evaluate(&array, &JsValue::UNDEFINED)),
+        &["evaluate: positions must be a Float32Array", "new Float32Array(array)"],
+    );
+    let short: JsValue = Float32Array::new_with_length(9).into();
+    assert_mentions(
+        &thrown(evaluator.evaluate(&short, &JsValue::UNDEFINED)),
+        &["has 9 floats; expected 24"],
+    );
+    let mut nan = cube_arrays().0;
+    nan[5] = f32::NAN;
+    let nan: JsValue = Float32Array::from(&nan[..]).into();
+    assert_mentions(
+        &thrown(evaluator.evaluate(&nan, &JsValue::UNDEFINED)),
+        &["positions[5] (vertex 1, z) is NaN", "finite"],
+    );
+    assert_mentions(
+        &thrown(evaluator.evaluate_attribute(&positions, 0, &JsValue::UNDEFINED)),
+        &["itemSize is 0"],
+    );
+    // A failed call leaves the lent frame alone, and the evaluator works on.
+    let before = f32s(&good, "positions");
+    let _ = evaluator.evaluate(&short, &good);
+    assert_eq!(f32s(&good, "positions"), before);
+    // The evaluator owns its table: freeing the base mesh leaves it working.
+    // (JS's `free()` is this drop.)
+    drop(base);
+    let again = ok(evaluator.evaluate(&positions, &JsValue::UNDEFINED));
+    assert_eq!(f32s(&again, "positions"), before);
+    // Options are checked when it is built.
+    let base = BaseMesh::new(&cube()).unwrap();
+    let sqrt3 = object(&[("scheme", "doo-sabin".into()), ("limit", JsValue::TRUE)]);
+    assert_mentions(&thrown(base.evaluator(&sqrt3).map(|_| ())), &["doo-sabin"]);
+    let huge =
+        object(&[("levels", JsValue::from_f64(3.0)), ("maxBytes", JsValue::from_f64(1000.0))]);
+    assert_mentions(&thrown(base.evaluator(&huge).map(|_| ())), &["maxBytes"]);
+}

@@ -1,0 +1,206 @@
+//! The evaluator (`subsurf::Evaluator`): built once, it gives for any control positions what
+//! `subdivide` gives for them (positions, limit positions, normals, vertex-varying channels),
+//! on every scheme, with tags, holes and face-varying channels; its table with tangent
+//! weights keeps rows affine (position weights sum to 1, tangent weights to 0); and bad input
+//! gets an error naming what is wrong.
+
+use subsurf::attributes::Attribute;
+use subsurf::io::obj::read_obj_with_tags;
+use subsurf::scheme::subdivide_refined_with;
+use subsurf::shapes::{cube, grid_with_hole, icosahedron, torus};
+use subsurf::{Error, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
+
+/// A deterministic deformation of `positions`: a twist about y and a wave.
+fn deform(positions: &[f32], t: f32) -> Vec<f32> {
+    let mut out = positions.to_vec();
+    for p in out.chunks_exact_mut(3) {
+        let (s, c) = (t * p[1]).sin_cos();
+        let (x, z) = (p[0], p[2]);
+        p[0] = c * x - s * z;
+        p[2] = s * x + c * z;
+        p[1] += 0.1 * (3.0 * x + t).sin();
+    }
+    out
+}
+
+fn diagonal(positions: &[f32]) -> f32 {
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in positions.chunks_exact(3) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (0..3).map(|k| (hi[k] - lo[k]).max(0.0).powi(2)).sum::<f32>().sqrt().max(1e-3)
+}
+
+fn assert_close(got: &[f32], want: &[f32], tolerance: f32, what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: lengths");
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!((g - w).abs() <= tolerance, "{what}: value {i} is {g}, subdivide gives {w}");
+    }
+}
+
+/// Unit normals agree within 1e-3 rad where both are defined.
+fn assert_normals(got: &[f32], want: &[f32], what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: lengths");
+    for (v, (a, b)) in got.chunks_exact(3).zip(want.chunks_exact(3)).enumerate() {
+        let dot: f32 = (0..3).map(|k| a[k] * b[k]).sum();
+        let zero = |n: &[f32]| n.iter().all(|&x| x == 0.0);
+        if zero(a) || zero(b) {
+            assert!(zero(a) && zero(b), "{what}: vertex {v}: {a:?} against {b:?}");
+            continue;
+        }
+        assert!(dot > 1.0 - 5e-7, "{what}: vertex {v}: {a:?} against {b:?}");
+    }
+}
+
+/// For each frame, the evaluator's output equals `subdivide` on the deformed mesh.
+fn check(mesh: &PolyMesh, attributes: &[Attribute], options: &Options, tags: &Tags, what: &str) {
+    let base = HalfEdgeMesh::from_poly(mesh).unwrap();
+    let evaluator = Evaluator::new(&base, attributes, options, tags).unwrap();
+    for t in [0.0, 0.7, 1.9] {
+        let control = deform(&mesh.positions, t);
+        let moved = PolyMesh { positions: control.clone(), ..mesh.clone() };
+        let mut want = subdivide_refined_with(&moved, attributes, options, tags).unwrap();
+        let want_normals = want.take_normals();
+        let (want_mesh, want_attributes) = want.into_parts();
+        let n = 3 * evaluator.num_vertices();
+        let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+        let normals_out = evaluator.has_normals().then_some(&mut normals[..]);
+        evaluator.evaluate(&control, &mut positions, normals_out).unwrap();
+        let what = format!("{what}, frame {t}");
+        let tolerance = 1e-5 * diagonal(&want_mesh.positions);
+        assert_close(&positions, &want_mesh.positions, tolerance, &what);
+        assert_eq!(evaluator.mesh().indices, want_mesh.indices, "{what}: faces");
+        assert_eq!(evaluator.mesh().face_sizes, want_mesh.face_sizes, "{what}: faces");
+        match want_normals {
+            Some(want) => assert_normals(&normals, &want, &what),
+            None => assert!(!evaluator.has_normals(), "{what}"),
+        }
+        if t == 0.0 {
+            // The channels at build time.
+            assert_eq!(evaluator.attributes().len(), want_attributes.len());
+            for (got, want) in evaluator.attributes().iter().zip(&want_attributes) {
+                assert_eq!(got.indices, want.indices, "{what}: {}", got.name);
+                let scale = want.values.iter().fold(1.0f32, |m, x| m.max(x.abs()));
+                let what = format!("{what}: {}", got.name);
+                assert_close(&got.values, &want.values, 1e-5 * scale, &what);
+            }
+        }
+    }
+}
+
+fn options(scheme: Scheme, levels: u32, limit: bool, normals: bool) -> Options {
+    Options { limit, normals, ..Options::new(scheme, levels) }
+}
+
+#[test]
+fn every_scheme_and_mode_equals_subdivide_frame_by_frame() {
+    let quads = torus(8, 6, 1.0, 0.3);
+    let triangles = icosahedron();
+    let cases: [(&PolyMesh, Scheme); 7] = [
+        (&quads, Scheme::CatmullClark),
+        (&triangles, Scheme::Loop),
+        (&quads, Scheme::Bilinear),
+        (&triangles, Scheme::Midpoint),
+        (&quads, Scheme::DooSabin),
+        (&triangles, Scheme::Sqrt3),
+        (&quads, Scheme::QuadTriangle),
+    ];
+    for (mesh, scheme) in cases {
+        for levels in 1..=2 {
+            for (limit, normals) in [(false, false), (false, true), (true, false), (true, true)] {
+                if limit && matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
+                    continue;
+                }
+                let options = options(scheme, levels, limit, normals);
+                let what = format!("{scheme} level {levels} limit {limit} normals {normals}");
+                check(mesh, &[], &options, &Tags::default(), &what);
+            }
+        }
+    }
+}
+
+#[test]
+fn tags_holes_and_channels_follow() {
+    // OpenSubdiv's shapes with creases, corners and holes, and one with UVs (face-varying).
+    let root = env!("CARGO_MANIFEST_DIR");
+    for (name, scheme) in [
+        ("catmark_cube_creases2", Scheme::CatmullClark),
+        ("catmark_hole_test1", Scheme::CatmullClark),
+        ("catmark_fvar_bound1", Scheme::CatmullClark),
+        ("catmark_car", Scheme::CatmullClark),
+        ("loop_cube_creases0", Scheme::Loop),
+        ("loop_fvar_bound1", Scheme::Loop),
+    ] {
+        let path = format!("{root}/tests/meshes/osd/{name}.obj");
+        let obj = read_obj_with_tags(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let mut attributes = obj.attributes.clone();
+        attributes.push(Attribute::vertex("copy", 3, obj.mesh.positions.clone()));
+        for limit in [false, true] {
+            let mut options = options(scheme, 2, limit, true);
+            options.boundary = obj.boundary.unwrap_or_default();
+            check(&obj.mesh, &attributes, &options, &obj.tags, &format!("{name} limit {limit}"));
+        }
+    }
+    let mesh = grid_with_hole(4, 4, 1..3, 1..2);
+    let colour = Attribute::vertex(
+        "colour",
+        4,
+        (0..mesh.positions.len() / 3 * 4).map(|i| i as f32).collect(),
+    );
+    check(
+        &mesh,
+        &[colour],
+        &options(Scheme::CatmullClark, 2, true, true),
+        &Tags::default(),
+        "grid with a hole",
+    );
+}
+
+#[test]
+fn rows_are_affine_and_tangent_rows_sum_to_zero() {
+    let base = HalfEdgeMesh::from_poly(&torus(8, 6, 1.0, 0.3)).unwrap();
+    let evaluator =
+        Evaluator::new(&base, &[], &options(Scheme::CatmullClark, 2, true, true), &Tags::default())
+            .unwrap();
+    let table = evaluator.table();
+    let [first, second] = table.tangent_weights().expect("a table with normals has tangents");
+    for row in table.offsets().windows(2) {
+        let range = row[0] as usize..row[1] as usize;
+        let sum = |w: &[f32]| w[range.clone()].iter().map(|&x| f64::from(x)).sum::<f64>();
+        assert!((sum(table.weights()) - 1.0).abs() < 1e-5);
+        assert!(sum(first).abs() < 1e-4 && sum(second).abs() < 1e-4);
+        assert!(table.indices()[range.clone()].windows(2).all(|p| p[0] < p[1]));
+    }
+}
+
+#[test]
+fn bad_input_is_refused_and_the_outputs_stay() {
+    let base = HalfEdgeMesh::from_poly(&cube()).unwrap();
+    let evaluator =
+        Evaluator::new(&base, &[], &options(Scheme::CatmullClark, 1, true, true), &Tags::default())
+            .unwrap();
+    let n = 3 * evaluator.num_vertices();
+    let (mut positions, mut normals) = (vec![7.0; n], vec![7.0; n]);
+    let message = |r: subsurf::Result<()>| match r {
+        Err(Error::InvalidAttribute(m)) => m,
+        other => panic!("expected an error, got {other:?}"),
+    };
+    let short = message(evaluator.evaluate(&[0.0; 9], &mut positions, Some(&mut normals)));
+    assert!(short.contains("has 9 floats; expected 24"), "{short}");
+    let mut control = cube().positions;
+    control[4] = f32::NAN;
+    let nan = message(evaluator.evaluate(&control, &mut positions, Some(&mut normals)));
+    assert!(nan.contains("positions[4] (vertex 1, y) is NaN"), "{nan}");
+    let missing = message(evaluator.evaluate(&cube().positions, &mut positions, None));
+    assert!(missing.contains("normals"), "{missing}");
+    assert!(positions.iter().chain(&normals).all(|&x| x == 7.0), "outputs untouched");
+    let width = message(evaluator.evaluate_attribute(&[0.0; 10], 2, &mut [0.0; 52]));
+    assert!(width.contains("expected 2 (itemSize) for each of the 8 vertices"), "{width}");
+    // Options without a limit rule are refused when the evaluator is built.
+    let sqrt3 =
+        Evaluator::new(&base, &[], &options(Scheme::DooSabin, 1, true, false), &Tags::default());
+    assert!(matches!(sqrt3, Err(Error::Unsupported(m)) if m.contains("doo-sabin")));
+}
