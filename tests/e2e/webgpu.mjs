@@ -11,10 +11,13 @@
 // caller's GPUBuffer and through a caller's command encoder), normals that must be (0, 0, 0)
 // (parallel tangents, an overflowing cross product, an empty row), a table of over 4.2 M rows
 // (the 2D dispatch) and a table too big to interleave its weights under the default limits
-// (the three-binding shader). Then the errors: bad tables, a control of the wrong length or
+// (the three-binding shader); the wasm Evaluator (BaseMesh.evaluator({ levels: 2, limit: true,
+// normals: true }) on five built-in shapes, as built and twisted): GPU vs evaluator.evaluate.
+// Then the errors: bad tables, a control of the wrong length or
 // type, a destroyed evaluator, a lost device (device.destroy()), and requestGpuDevice where
 // navigator.gpu is missing (deleted on a secure page, and a page that is not a secure context).
-// Prints the GPU time per evaluate for 1 M output points (never asserted). Exits non-zero on
+// Prints the GPU time per evaluate for 1 M output points, random and the torus at level 6 (with
+// the wasm evaluator.evaluate's for comparison; never asserted). Exits non-zero on
 // failure.
 import { createServer } from 'node:http';
 import { existsSync, readFileSync, statSync } from 'node:fs';
@@ -468,15 +471,53 @@ async function run() {
       }
       return out;
     });
-    if (real === null) {
-      console.log('  skipped the wasm Evaluator cases: this build has no BaseMesh.evaluator yet');
-    } else {
-      for (const r of real) {
-        const what = `evaluator ${r.name} (${r.scheme}, levels 2, limit, ${r.numVertices} points, ${r.entries} weights), ${r.pose}`;
-        within(`${what}: positions`, r.positions);
-        within(`${what}: normals`, r.normals);
-      }
+    if (real === null) fail('the wasm Evaluator', 'the built package has no BaseMesh.evaluator');
+    for (const r of real ?? []) {
+      const what = `evaluator ${r.name} (${r.scheme}, levels 2, limit, ${r.numVertices} points, ${r.entries} weights), ${r.pose}`;
+      within(`${what}: positions`, r.positions);
+      within(`${what}: normals`, r.normals);
     }
+
+    // ---- a real table of 1.2 M points (the torus at level 6, limit, normals): GPU vs wasm, timed
+    const torus = await page.evaluate(async () => {
+      const S = await import('/pkg/subsurf.js');
+      const mesh = S.shape('torus');
+      const base = new S.BaseMesh(mesh);
+      let started = performance.now();
+      const evaluator = base.evaluator({ levels: 6, limit: true, normals: true });
+      const buildMs = performance.now() - started;
+      started = performance.now();
+      const gpu = W.createGpuEvaluator(device, evaluator);
+      const uploadMs = performance.now() - started;
+      const timed = async (step) => {
+        await step();
+        let count = 0;
+        const start = performance.now();
+        while (count < 3 || performance.now() - start < 1000) {
+          await step();
+          count++;
+        }
+        return { ms: (performance.now() - start) / count, count };
+      };
+      let frame;
+      const cpu = await timed(() => { frame = evaluator.evaluate(mesh.positions, frame); });
+      const gpuTime = await timed(async () => { gpu.evaluate(mesh.positions); await device.queue.onSubmittedWorkDone(); });
+      const back = await gpu.readBack();
+      const out = {
+        numVertices: gpu.numVertices, entries: evaluator.stencils().indices.length, buildMs, uploadMs, cpu, gpu: gpuTime,
+        positions: T.compare(back.positions, frame.positions), normals: T.compare(back.normals, frame.normals),
+      };
+      gpu.destroy();
+      evaluator.free();
+      base.free();
+      return out;
+    });
+    within(`evaluator torus, levels 6 (${torus.numVertices} points, ${torus.entries} weights): positions`, torus.positions);
+    within(`evaluator torus, levels 6: normals`, torus.normals);
+    figures.push(`torus, levels 6, limit, normals (${torus.numVertices.toLocaleString('en-US')} points x ` +
+      `${(torus.entries / torus.numVertices).toFixed(1)} weights): GPU ${torus.gpu.ms.toFixed(1)} ms per evaluate ` +
+      `(${torus.gpu.count} runs), wasm evaluator.evaluate ${torus.cpu.ms.toFixed(1)} ms (${torus.cpu.count} runs); ` +
+      `evaluator build ${torus.buildMs.toFixed(0)} ms, GPU table upload ${torus.uploadMs.toFixed(0)} ms`);
 
     // ---- errors
     const errors = await page.evaluate(async () => {

@@ -225,7 +225,7 @@ check('tsc on tests/js/webgpu_types_check.ts with @webgpu/types', () => {
   cpSync(join(root, 'node_modules', '@webgpu', 'types'), join(scratch, 'node_modules', '@webgpu', 'types'), { recursive: true });
   const compilerOptions = {
     strict: true, noEmit: true, skipLibCheck: false, target: 'es2022', module: 'nodenext', moduleResolution: 'nodenext',
-    lib: ['es2022', 'dom'], types: [],
+    lib: ['es2022', 'esnext.disposable', 'dom'], types: [],
   };
   writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['webgpu_types_check.ts'] }));
   const tsc = spawnSync(join(root, 'node_modules', '.bin', 'tsc'), ['-p', scratch], { encoding: 'utf8' });

@@ -4,6 +4,7 @@
 // go straight into a render pass) and its device the real GPUDevice. Each `@ts-expect-error`
 // marks a misuse the types must refuse.
 /// <reference types="@webgpu/types" />
+import { BaseMesh } from 'subsurf';
 import { createGpuEvaluator, requestGpuDevice, stencilShader, type GpuEvaluator, type GpuReadBack, type StencilArrays } from 'subsurf/webgpu';
 
 const device: GPUDevice = await requestGpuDevice({ adapter: { powerPreference: 'high-performance' } });
@@ -18,6 +19,11 @@ const gpu: GpuEvaluator = createGpuEvaluator(device, stencils, 1);
 const fromEvaluator = createGpuEvaluator(device, { numControlVertices: 1, stencils: () => stencils });
 // What Evaluator.stencils() returns carries numControlVertices.
 const fromArrays = createGpuEvaluator(device, { ...stencils, numControlVertices: 1 });
+// The wasm Evaluator itself, and its arrays.
+const base = new BaseMesh({ positions: new Float32Array(9), indices: new Uint32Array([0, 1, 2]) });
+const evaluator = base.evaluator({ levels: 2, limit: true, normals: true });
+const fromWasm: GpuEvaluator = createGpuEvaluator(device, evaluator);
+const fromWasmArrays: GpuEvaluator = createGpuEvaluator(device, evaluator.stencils());
 
 gpu.evaluate(new Float32Array(3));
 const control: GPUBuffer = device.createBuffer({ size: 12, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
@@ -36,6 +42,8 @@ const wgsl: string = stencilShader({ normals: true });
 gpu.destroy();
 fromEvaluator.destroy();
 fromArrays.destroy();
+fromWasm.destroy();
+fromWasmArrays.destroy();
 
 // @ts-expect-error: control must be a Float32Array or a GPUBuffer
 gpu.evaluate(new Float64Array(3));
