@@ -6,7 +6,8 @@
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
 # the built package, native vs wasm agreement on seeded random meshes (the fixture comes from
-# the native tests), the demo page end-to-end test (when tests/e2e/demo.mjs exists), and a short
+# the native tests), the demo page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's
+# compute shader against a JS reference in headless Chromium on SwiftShader (e2e-webgpu), and a short
 # fuzz run of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
@@ -103,10 +104,12 @@ if run build-pkg scripts/build-pkg.sh; then
   else
     skip e2e-demo "tests/e2e/demo.mjs does not exist"
   fi
+  run e2e-webgpu node tests/e2e/webgpu.mjs
 else
   skip pkg-smoke "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
+  skip e2e-webgpu "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 

@@ -35,6 +35,7 @@ check('package.json', () => {
   assert.equal(pkg.type, 'module');
   assert.equal(pkg.types, './subsurf.d.ts');
   assert.ok(pkg.exports['.'] && pkg.exports['./node'], 'exports . and ./node');
+  assert.deepEqual(pkg.exports['./webgpu'], { types: './webgpu.d.ts', default: './webgpu.js' });
 });
 
 const scratch = mkdtempSync(join(tmpdir(), 'subsurf-smoke-'));
@@ -46,11 +47,11 @@ for (const file of [...pkg.files, 'package.json']) {
 }
 writeFileSync(
   join(scratch, 'consumer.mjs'),
-  "export * as node from 'subsurf/node';\nexport * as web from 'subsurf';\n",
+  "export * as node from 'subsurf/node';\nexport * as web from 'subsurf';\nexport * as webgpu from 'subsurf/webgpu';\n",
 );
 
 // ---- the three ways to load it
-const { node } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+const { node, webgpu } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
 const bytes = readFileSync(join(installed, 'subsurf_bg.wasm'));
 // A query string gives a separate module instance, so each loader starts from scratch.
 const viaInitSync = await import(pathToFileURL(join(installed, 'subsurf.js')).href + '?initSync');
@@ -203,16 +204,43 @@ check('subsurf.d.ts', () => {
 // `esnext.disposable` lib because wasm-bindgen's classes declare [Symbol.dispose] (TypeScript
 // 5.2 or later); and the `tsc --init` default, skipLibCheck on, with an older lib.
 writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
-cpSync(join(root, 'tests', 'js', 'types_check.ts'), join(scratch, 'types_check.ts'));
+for (const file of ['types_check.ts', 'webgpu_types_plain.ts', 'webgpu_types_check.ts']) {
+  cpSync(join(root, 'tests', 'js', file), join(scratch, file));
+}
 for (const [skipLibCheck, lib] of [[false, ['es2022', 'esnext.disposable', 'dom']], [true, ['es2022', 'dom']]]) {
   check(`tsc on tests/js/types_check.ts, skipLibCheck ${skipLibCheck}`, () => {
     const compilerOptions = {
       strict: true, noEmit: true, skipLibCheck, target: 'es2022', module: 'nodenext', moduleResolution: 'nodenext', lib, types: [],
     };
-    writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['types_check.ts'] }));
+    // subsurf/webgpu without WebGPU typings (its stand-in types) goes with the main check.
+    writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['types_check.ts', 'webgpu_types_plain.ts'] }));
     const tsc = spawnSync(join(root, 'node_modules', '.bin', 'tsc'), ['-p', scratch], { encoding: 'utf8' });
     assert.equal(tsc.status, 0, `tsc failed:\n${tsc.stdout}${tsc.stderr}`);
   });
 }
+
+// subsurf/webgpu as a WebGPU app uses it, with @webgpu/types (a devDependency) installed: the
+// evaluator's device and buffers must be the real GPUDevice and GPUBuffer.
+check('tsc on tests/js/webgpu_types_check.ts with @webgpu/types', () => {
+  cpSync(join(root, 'node_modules', '@webgpu', 'types'), join(scratch, 'node_modules', '@webgpu', 'types'), { recursive: true });
+  const compilerOptions = {
+    strict: true, noEmit: true, skipLibCheck: false, target: 'es2022', module: 'nodenext', moduleResolution: 'nodenext',
+    lib: ['es2022', 'esnext.disposable', 'dom'], types: [],
+  };
+  writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['webgpu_types_check.ts'] }));
+  const tsc = spawnSync(join(root, 'node_modules', '.bin', 'tsc'), ['-p', scratch], { encoding: 'utf8' });
+  assert.equal(tsc.status, 0, `tsc failed:\n${tsc.stdout}${tsc.stderr}`);
+});
+
+// subsurf/webgpu loads without WebGPU (tests/e2e/webgpu.mjs runs it in Chromium) and says why it
+// cannot work here.
+const noGpu = await webgpu.requestGpuDevice().then(() => null, (error) => error);
+check('subsurf/webgpu in Node', () => {
+  assert.ok(noGpu instanceof Error, 'requestGpuDevice rejects in Node');
+  assert.match(noGpu.message, /WebGPU is not available.*Node\.js has no WebGPU.*evaluator\.evaluate/);
+  assert.equal(typeof webgpu.createGpuEvaluator, 'function');
+  assert.match(webgpu.stencilShader({ normals: true }), /@compute @workgroup_size\(64\)/);
+  assert.throws(() => webgpu.createGpuEvaluator(undefined, {}, 0), /must be a GPUDevice.*requestGpuDevice/);
+});
 
 console.log(`pkg_smoke: ok (${checks} checks; subsurf ${pkg.version}, subsurf_bg.wasm ${bytes.length} bytes)`);

@@ -1,0 +1,435 @@
+// subsurf/webgpu: evaluates subsurf's stencil tables on the GPU with a WebGPU compute shader.
+// Refine once on the CPU (BaseMesh.evaluator), upload the table once, then each frame upload the
+// moved control points (or hand over a GPUBuffer) and get the refined points, and the limit
+// normals when the table has tangent weights, in GPU buffers usable directly as vertex buffers.
+// No dependencies; works without the wasm module (the tables are plain typed arrays).
+
+const WORKGROUP_SIZE = 64;
+const CPU_FALLBACK = 'use evaluator.evaluate(positions) on the CPU instead';
+
+// The buffer usage flags, as numbers so that this module loads where WebGPU is missing (the
+// values are fixed by the WebGPU specification).
+const MAP_READ = 0x0001;
+const COPY_SRC = 0x0004;
+const COPY_DST = 0x0008;
+const VERTEX = 0x0020;
+const STORAGE = 0x0080;
+
+/**
+ * Requests a WebGPU device for the GPU evaluator, with the adapter's largest storage-buffer
+ * binding and buffer sizes (the defaults, 128 MiB and 256 MiB, fit tables of a few million
+ * weights only). `options.adapter` goes to requestAdapter, `options.device` to requestDevice
+ * (its requiredLimits override the raised ones). Throws an Error saying why when WebGPU or an
+ * adapter is missing.
+ */
+export async function requestGpuDevice(options = {}) {
+  const gpu = typeof navigator === 'undefined' ? undefined : navigator.gpu;
+  if (!gpu) {
+    let why;
+    if (globalThis.process?.versions?.node || typeof navigator === 'undefined') {
+      why = 'navigator.gpu is missing: this is not a browser (Node.js has no WebGPU)';
+    } else if (globalThis.isSecureContext === false) {
+      why = `navigator.gpu is missing because this page is not a secure context (${globalThis.location?.origin ?? 'its origin'}); ` +
+        'WebGPU needs https:// or http://localhost / http://127.0.0.1';
+    } else {
+      why = 'navigator.gpu is missing; it needs Chrome or Edge 113+, Safari 26+ or Firefox 141+ (Windows), ' +
+        'in a secure context (https:// or localhost), with WebGPU not disabled';
+    }
+    throw new Error(`WebGPU is not available in this browser (${why}); ${CPU_FALLBACK}`);
+  }
+  const adapter = await gpu.requestAdapter(options.adapter);
+  if (!adapter) {
+    throw new Error('WebGPU is present but no GPU adapter was found (navigator.gpu.requestAdapter() returned null: ' +
+      `the GPU may be blocklisted or disabled; see chrome://gpu in Chrome); ${CPU_FALLBACK}`);
+  }
+  const descriptor = options.device ?? {};
+  const requiredLimits = {
+    maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
+    maxBufferSize: adapter.limits.maxBufferSize,
+    ...descriptor.requiredLimits,
+  };
+  return adapter.requestDevice({ ...descriptor, requiredLimits });
+}
+
+/**
+ * Uploads a stencil table to `device` and returns a GpuEvaluator. `source` is either an
+ * Evaluator from BaseMesh.evaluator() (its stencils() and numControlVertices are read) or the
+ * arrays of a table, `{ offsets, indices, weights, tangentWeights?, numControlVertices? }`, with
+ * `numControlVertices` given here when the arrays do not carry it.
+ */
+export function createGpuEvaluator(device, source, numControlVertices) {
+  return new GpuEvaluator(device, source, numControlVertices);
+}
+
+export class GpuEvaluator {
+  constructor(device, source, numControlVertices) {
+    if (!device || typeof device.createBuffer !== 'function' || !device.queue) {
+      throw new Error(`createGpuEvaluator: the first argument must be a GPUDevice (got ${describe(device)}); ` +
+        'get one with await requestGpuDevice()');
+    }
+    let stencils = source;
+    if (source && typeof source.stencils === 'function') {
+      if (numControlVertices === undefined) numControlVertices = source.numControlVertices;
+      stencils = source.stencils();
+    }
+    // Evaluator.stencils() says it too.
+    if (numControlVertices === undefined && stencils) numControlVertices = stencils.numControlVertices;
+    const table = checkTable(stencils, numControlVertices);
+    this.device = device;
+    this.numControlVertices = numControlVertices;
+    this.numVertices = table.numVertices;
+    this.hasNormals = table.tangentWeights !== undefined;
+    this._lost = null;
+    this._destroyed = false;
+    this._owned = [];
+    this._controlBuffer = null; // the last control GPUBuffer a bind group was made for
+    this._bindGroup = null;
+    device.lost.then((info) => { this._lost = info; });
+
+    // ---- sizes against the device's limits
+    const limits = device.limits;
+    const maxBinding = Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
+    const nnz = table.indices.length;
+    // With normals, the three weights of an entry go to one buffer, interleaved, when it fits:
+    // one binding instead of three and one read per entry. Otherwise three bindings.
+    const merged = this.hasNormals && 12 * nnz <= maxBinding;
+    this._merged = merged;
+    const storageBuffers = 5 + (this.hasNormals ? 1 : 0) + (this.hasNormals && !merged ? 2 : 0);
+    if (storageBuffers > limits.maxStorageBuffersPerShaderStage) {
+      throw new Error(`createGpuEvaluator: the shader needs ${storageBuffers} storage buffers, more than this device's ` +
+        `maxStorageBuffersPerShaderStage (${limits.maxStorageBuffersPerShaderStage}); request a device with ` +
+        `requiredLimits: { maxStorageBuffersPerShaderStage: ${storageBuffers} } (a core WebGPU device has 8), or ${CPU_FALLBACK}`);
+    }
+    const sizes = [
+      ['offsets', 4 * (this.numVertices + 1)],
+      ['indices', 4 * nnz],
+      [merged ? 'weights and tangent weights (interleaved)' : 'weights', (merged ? 12 : 4) * nnz],
+      ['control points', 12 * numControlVertices],
+      ['positions', 12 * this.numVertices],
+    ];
+    for (const [what, bytes] of sizes) {
+      if (bytes > maxBinding) {
+        throw new Error(`createGpuEvaluator: the table's ${what} need ${bytes} bytes, more than this device allows in one ` +
+          `storage buffer (maxStorageBufferBindingSize ${limits.maxStorageBufferBindingSize}, maxBufferSize ` +
+          `${limits.maxBufferSize}); request the device with requestGpuDevice(), which raises both to the adapter's ` +
+          `maximum, or use fewer levels, or ${CPU_FALLBACK}`);
+      }
+    }
+
+    // ---- buffers
+    this._offsets = this._upload('offsets', table.offsets);
+    this._indices = this._upload('indices', table.indices);
+    if (merged) {
+      const [t1, t2] = table.tangentWeights;
+      this._weights = this._upload('weights', null, 12 * nnz, (mapped) => {
+        const out = new Float32Array(mapped);
+        const w = table.weights;
+        for (let k = 0, j = 0; k < nnz; k++, j += 3) {
+          out[j] = w[k];
+          out[j + 1] = t1[k];
+          out[j + 2] = t2[k];
+        }
+      });
+    } else {
+      this._weights = this._upload('weights', table.weights);
+      if (this.hasNormals) {
+        this._tangents1 = this._upload('tangent weights 1', table.tangentWeights[0]);
+        this._tangents2 = this._upload('tangent weights 2', table.tangentWeights[1]);
+      }
+    }
+    this._control = this._buffer('control points', 12 * numControlVertices, STORAGE | COPY_DST);
+    this.positions = this._buffer('positions', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC);
+    this.normals = this.hasNormals
+      ? this._buffer('normals', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC)
+      : undefined;
+    this._pipeline = pipeline(device, this.hasNormals, merged);
+
+    // ---- the dispatch: one invocation per output vertex, 2D when one dimension is not enough
+    const groups = Math.ceil(this.numVertices / WORKGROUP_SIZE);
+    const maxPerDimension = limits.maxComputeWorkgroupsPerDimension;
+    this._groupsX = Math.min(groups, maxPerDimension);
+    this._groupsY = groups === 0 ? 0 : Math.ceil(groups / this._groupsX);
+    if (this._groupsY > maxPerDimension) {
+      throw new Error(`createGpuEvaluator: ${this.numVertices} output vertices need more workgroups than this device can ` +
+        `dispatch (${maxPerDimension} x ${maxPerDimension} of ${WORKGROUP_SIZE}); use fewer levels, or ${CPU_FALLBACK}`);
+    }
+  }
+
+  /** Whether destroy() was called. */
+  get destroyed() {
+    return this._destroyed;
+  }
+
+  /**
+   * Computes the refined positions (and normals) from `control`: a Float32Array of x, y, z per
+   * base-mesh vertex, uploaded with queue.writeBuffer, or a GPUBuffer with STORAGE usage holding
+   * them (read in place). Records a compute pass into `encoder` when given (you submit it),
+   * otherwise submits its own. Nothing is read back.
+   */
+  evaluate(control, encoder) {
+    this._checkUsable('evaluate');
+    const expected = 3 * this.numControlVertices;
+    let buffer;
+    if (control instanceof Float32Array) {
+      if (control.length !== expected) {
+        throw new Error(`GpuEvaluator.evaluate: control has ${control.length} floats, but this table needs ${expected} ` +
+          `(x, y, z for each of its ${this.numControlVertices} base-mesh vertices); pass the base mesh's positions`);
+      }
+      if (expected > 0) this.device.queue.writeBuffer(this._control, 0, control.buffer, control.byteOffset, control.byteLength);
+      buffer = this._control;
+    } else if (isGpuBuffer(control)) {
+      if ((control.usage & STORAGE) === 0) {
+        throw new Error('GpuEvaluator.evaluate: the control GPUBuffer was not created with GPUBufferUsage.STORAGE; ' +
+          'add STORAGE to its usage, or pass a Float32Array');
+      }
+      if (control.size < 4 * expected) {
+        throw new Error(`GpuEvaluator.evaluate: the control GPUBuffer has ${control.size} bytes, but this table needs ` +
+          `${4 * expected} (3 f32 for each of its ${this.numControlVertices} base-mesh vertices)`);
+      }
+      buffer = control;
+    } else {
+      throw new Error(`GpuEvaluator.evaluate: control must be a Float32Array of ${expected} floats (x, y, z per base-mesh ` +
+        `vertex) or a GPUBuffer with STORAGE usage, got ${describe(control)}` +
+        (ArrayBuffer.isView(control) || Array.isArray(control) ? '; convert it with new Float32Array(control)' : ''));
+    }
+    if (this.numVertices === 0) return;
+    const own = !encoder;
+    const commands = own ? this.device.createCommandEncoder({ label: 'subsurf GpuEvaluator' }) : encoder;
+    const pass = commands.beginComputePass({ label: 'subsurf stencils' });
+    pass.setPipeline(this._pipeline);
+    pass.setBindGroup(0, this._bindGroupFor(buffer));
+    pass.dispatchWorkgroups(this._groupsX, this._groupsY);
+    pass.end();
+    if (own) this.device.queue.submit([commands.finish()]);
+  }
+
+  /**
+   * Copies the current positions (and normals) back to the CPU, after the work submitted so far
+   * (for tests and debugging: a frame should draw from the buffers instead).
+   */
+  async readBack() {
+    this._checkUsable('readBack');
+    const bytes = 12 * this.numVertices;
+    const sources = this.hasNormals ? [this.positions, this.normals] : [this.positions];
+    if (bytes === 0) {
+      return this.hasNormals ? { positions: new Float32Array(0), normals: new Float32Array(0) } : { positions: new Float32Array(0) };
+    }
+    const staging = sources.map(() => this.device.createBuffer({ label: 'subsurf read-back', size: bytes, usage: MAP_READ | COPY_DST }));
+    try {
+      const commands = this.device.createCommandEncoder({ label: 'subsurf read-back' });
+      sources.forEach((source, i) => commands.copyBufferToBuffer(source, 0, staging[i], 0, bytes));
+      this.device.queue.submit([commands.finish()]);
+      const arrays = [];
+      for (const buffer of staging) {
+        try {
+          await buffer.mapAsync(MAP_READ);
+        } catch (error) {
+          // A device lost while waiting: say so (the lost promise settles about now).
+          await new Promise((resolve) => setTimeout(resolve, 0));
+          this._checkUsable('readBack');
+          throw new Error(`GpuEvaluator.readBack: mapping the results failed (${error.message ?? error})`);
+        }
+        arrays.push(new Float32Array(buffer.getMappedRange().slice(0)));
+        buffer.unmap();
+      }
+      return this.hasNormals ? { positions: arrays[0], normals: arrays[1] } : { positions: arrays[0] };
+    } finally {
+      for (const buffer of staging) buffer.destroy();
+    }
+  }
+
+  /** Frees the GPU buffers (positions and normals included; a caller's control buffer is kept). */
+  destroy() {
+    if (this._destroyed) return;
+    this._destroyed = true;
+    for (const buffer of this._owned) buffer.destroy();
+    this._owned = [];
+    this._bindGroup = null;
+    this._controlBuffer = null;
+  }
+
+  _checkUsable(method) {
+    if (this._destroyed) {
+      throw new Error(`GpuEvaluator.${method}: this evaluator was destroyed (destroy() was called); ` +
+        'create a new one with createGpuEvaluator(device, evaluator)');
+    }
+    if (this._lost) {
+      const why = this._lost.reason === 'destroyed' ? 'device.destroy() was called' : this._lost.message || 'no reason given';
+      throw new Error(`GpuEvaluator.${method}: the GPU device was lost (reason '${this._lost.reason}': ${why}); ` +
+        'request a new device with requestGpuDevice() and create a new GpuEvaluator on it, ' +
+        `or ${CPU_FALLBACK}`);
+    }
+  }
+
+  _buffer(label, size, usage, mappedAtCreation = false) {
+    // Bindings cannot be empty: an empty table still gets 4 bytes.
+    const buffer = this.device.createBuffer({ label: `subsurf ${label}`, size: Math.max(4, size), usage, mappedAtCreation });
+    this._owned.push(buffer);
+    return buffer;
+  }
+
+  _upload(label, array, size = array.byteLength, fill = (mapped) => new array.constructor(mapped).set(array)) {
+    const buffer = this._buffer(label, size, STORAGE, true);
+    fill(buffer.getMappedRange(0, size));
+    buffer.unmap();
+    return buffer;
+  }
+
+  _bindGroupFor(control) {
+    if (this._bindGroup && this._controlBuffer === control) return this._bindGroup;
+    const entries = [
+      { binding: 0, resource: { buffer: this._offsets } },
+      { binding: 1, resource: { buffer: this._indices } },
+      { binding: 2, resource: { buffer: this._weights } },
+      { binding: 3, resource: { buffer: control, size: Math.max(4, 12 * this.numControlVertices) } },
+      { binding: 4, resource: { buffer: this.positions } },
+    ];
+    if (this.hasNormals) {
+      entries.push({ binding: 5, resource: { buffer: this.normals } });
+      if (!this._merged) {
+        entries.push({ binding: 6, resource: { buffer: this._tangents1 } });
+        entries.push({ binding: 7, resource: { buffer: this._tangents2 } });
+      }
+    }
+    this._bindGroup = this.device.createBindGroup({
+      label: 'subsurf stencils',
+      layout: this._pipeline.getBindGroupLayout(0),
+      entries,
+    });
+    this._controlBuffer = control;
+    return this._bindGroup;
+  }
+}
+
+/** The WGSL of the stencil sum; exported for reading, not needed to use the evaluator. */
+export function stencilShader({ normals = false, mergedWeights = true } = {}) {
+  const merged = normals && mergedWeights;
+  const weight = merged ? 'weights[3u * k]' : 'weights[k]';
+  return /* wgsl */ `// subsurf: output vertex i = sum of weights[k] * control[indices[k]], k in offsets[i]..offsets[i+1]
+@group(0) @binding(0) var<storage, read> offsets: array<u32>;
+@group(0) @binding(1) var<storage, read> indices: array<u32>;
+@group(0) @binding(2) var<storage, read> weights: array<f32>;${merged ? ' // w, t1, t2 per entry' : ''}
+@group(0) @binding(3) var<storage, read> control: array<f32>;
+@group(0) @binding(4) var<storage, read_write> positions: array<f32>;
+${normals ? '@group(0) @binding(5) var<storage, read_write> normals: array<f32>;\n' : ''}${normals && !merged ? `@group(0) @binding(6) var<storage, read> tangents1: array<f32>;
+@group(0) @binding(7) var<storage, read> tangents2: array<f32>;
+` : ''}
+@compute @workgroup_size(${WORKGROUP_SIZE})
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+  let i = id.x + id.y * groups.x * ${WORKGROUP_SIZE}u;
+  if (i + 1u >= arrayLength(&offsets)) {
+    return;
+  }
+  let end = offsets[i + 1u];
+  var p = vec3<f32>(0.0);
+${normals ? '  var t1 = vec3<f32>(0.0);\n  var t2 = vec3<f32>(0.0);\n' : ''}  for (var k = offsets[i]; k < end; k++) {
+    let c = 3u * indices[k];
+    let v = vec3<f32>(control[c], control[c + 1u], control[c + 2u]);
+    p += ${weight} * v;
+${normals ? (merged
+    ? '    t1 += weights[3u * k + 1u] * v;\n    t2 += weights[3u * k + 2u] * v;\n'
+    : '    t1 += tangents1[k] * v;\n    t2 += tangents2[k] * v;\n') : ''}  }
+  positions[3u * i] = p.x;
+  positions[3u * i + 1u] = p.y;
+  positions[3u * i + 2u] = p.z;
+${normals ? `  // cross(t1, t2) normalised; (0, 0, 0) when its length is 0 or not finite (tested on the bits:
+  // a compiler may assume floats are finite).
+  let n = cross(t1, t2);
+  let len = sqrt(dot(n, n));
+  var unit = vec3<f32>(0.0);
+  if (len > 0.0 && (bitcast<u32>(len) & 0x7f800000u) != 0x7f800000u) {
+    unit = n / len;
+  }
+  normals[3u * i] = unit.x;
+  normals[3u * i + 1u] = unit.y;
+  normals[3u * i + 2u] = unit.z;
+` : ''}}
+`;
+}
+
+// One pipeline per device and shader variant, shared by its evaluators.
+const pipelines = new WeakMap();
+
+function pipeline(device, normals, mergedWeights) {
+  let cache = pipelines.get(device);
+  if (!cache) pipelines.set(device, (cache = new Map()));
+  const key = `${normals}/${mergedWeights}`;
+  let result = cache.get(key);
+  if (!result) {
+    const module = device.createShaderModule({ label: 'subsurf stencils', code: stencilShader({ normals, mergedWeights }) });
+    result = device.createComputePipeline({ label: 'subsurf stencils', layout: 'auto', compute: { module, entryPoint: 'main' } });
+    cache.set(key, result);
+  }
+  return result;
+}
+
+/** Checks a table's arrays once, so that the shader never reads outside them. */
+function checkTable(stencils, numControlVertices) {
+  const where = 'createGpuEvaluator';
+  if (!stencils || typeof stencils !== 'object') {
+    throw new Error(`${where}: the second argument must be an Evaluator (BaseMesh.evaluator()) or its stencils() ` +
+      `{ offsets, indices, weights, tangentWeights? }, got ${describe(stencils)}`);
+  }
+  if (!Number.isInteger(numControlVertices) || numControlVertices < 0) {
+    throw new Error(`${where}: numControlVertices must be a whole number >= 0 (the base mesh's vertex count), ` +
+      `got ${describe(numControlVertices)}`);
+  }
+  const { offsets, indices, weights, tangentWeights } = stencils;
+  const typed = (name, value, type) => {
+    if (!(value instanceof type)) {
+      throw new Error(`${where}: stencils.${name} must be a ${type.name}, got ${describe(value)}`);
+    }
+  };
+  typed('offsets', offsets, Uint32Array);
+  typed('indices', indices, Uint32Array);
+  typed('weights', weights, Float32Array);
+  if (offsets.length === 0) throw new Error(`${where}: stencils.offsets is empty; it needs numVertices + 1 entries starting at 0`);
+  const numVertices = offsets.length - 1;
+  const nnz = indices.length;
+  if (weights.length !== nnz) {
+    throw new Error(`${where}: stencils.weights has ${weights.length} entries and stencils.indices ${nnz}; they must be parallel`);
+  }
+  if (offsets[0] !== 0 || offsets[numVertices] !== nnz) {
+    throw new Error(`${where}: stencils.offsets must start at 0 and end at indices.length (${nnz}), ` +
+      `but runs from ${offsets[0]} to ${offsets[numVertices]}`);
+  }
+  for (let i = 0; i < numVertices; i++) {
+    if (offsets[i + 1] < offsets[i]) {
+      throw new Error(`${where}: stencils.offsets decreases at vertex ${i} (${offsets[i]} then ${offsets[i + 1]}); it must not`);
+    }
+  }
+  for (let k = 0; k < nnz; k++) {
+    if (indices[k] >= numControlVertices) {
+      throw new Error(`${where}: stencils.indices[${k}] is ${indices[k]}, but there are only ${numControlVertices} ` +
+        'control vertices; is numControlVertices right?');
+    }
+  }
+  if (tangentWeights !== undefined) {
+    if (!Array.isArray(tangentWeights) || tangentWeights.length !== 2) {
+      throw new Error(`${where}: stencils.tangentWeights must be two Float32Arrays [du, dv], got ${describe(tangentWeights)}`);
+    }
+    tangentWeights.forEach((array, j) => {
+      typed(`tangentWeights[${j}]`, array, Float32Array);
+      if (array.length !== nnz) {
+        throw new Error(`${where}: stencils.tangentWeights[${j}] has ${array.length} entries and stencils.indices ${nnz}; ` +
+          'they must be parallel');
+      }
+    });
+  }
+  return { numVertices, offsets, indices, weights, tangentWeights };
+}
+
+function isGpuBuffer(value) {
+  if (typeof GPUBuffer === 'function') return value instanceof GPUBuffer;
+  return !!value && typeof value === 'object' && typeof value.mapAsync === 'function' && typeof value.usage === 'number';
+}
+
+function describe(value) {
+  if (value === null) return 'null';
+  if (Array.isArray(value)) return `an Array of length ${value.length}`;
+  if (ArrayBuffer.isView(value)) return `a ${value.constructor.name} of length ${value.length}`;
+  if (typeof value === 'object') return `an object (${value.constructor?.name ?? 'Object'})`;
+  if (value === undefined) return 'undefined';
+  if (typeof value === 'string') return `the string ${JSON.stringify(value)}`;
+  return `the ${typeof value} ${String(value)}`;
+}
