@@ -490,11 +490,16 @@ impl StencilTable {
     fn evaluate_xyz(&self, control: &[f32], out: &mut [f32]) {
         let padded = pad(control);
         let (out, _) = out.as_chunks_mut::<3>();
+        let (indices, weights) = (&self.indices[..], &self.weights[..]);
+        debug_assert!(indices.iter().all(|&c| (c as usize) < padded.len()));
         for (row, value) in self.offsets.windows(2).zip(out) {
             let range = row[0] as usize..row[1] as usize;
             let mut sum = [0.0f32; 4];
-            for (&c, &w) in self.indices[range.clone()].iter().zip(&self.weights[range]) {
-                let x = &padded[c as usize];
+            for (&c, &w) in indices[range.clone()].iter().zip(&weights[range]) {
+                // SAFETY: every control index of a table is below its `num_control` (the rows
+                // are built from the control vertices' own stencils), and `check_lengths` made
+                // `control`, so `padded`, hold `num_control` points.
+                let x = unsafe { padded.get_unchecked(c as usize) };
                 for k in 0..4 {
                     sum[k] += x[k] * w;
                 }
