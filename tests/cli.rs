@@ -288,3 +288,75 @@ fn refined_uvs_follow_the_closed_form() {
         run_on("uv-none", &cube_with_square_uvs(), &["--levels", "1", "--fvar-linear", "none"]);
     assert_eq!(components(&smooth), [0, 1, 4, 7, 8], "eighths");
 }
+
+/// The `vn` lines of an OBJ text, and the normal index of every face corner.
+fn normals_of(text: &str) -> (Vec<[f32; 3]>, Vec<(u32, u32)>) {
+    let mut normals = Vec::new();
+    let mut corners = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("vn") => {
+                let n: Vec<f32> = words.map(|w| w.parse().unwrap()).collect();
+                normals.push([n[0], n[1], n[2]]);
+            }
+            Some("f") => {
+                for corner in words {
+                    let parts: Vec<&str> = corner.split('/').collect();
+                    assert_eq!(parts.len(), 3, "corner {corner} should name its normal");
+                    corners.push((parts[0].parse().unwrap(), parts[2].parse().unwrap()));
+                }
+            }
+            _ => {}
+        }
+    }
+    (normals, corners)
+}
+
+#[test]
+fn limit_and_normals_write_one_normal_per_vertex() {
+    use subsurf::scheme::subdivide_limit_with;
+    use subsurf::{Options, Scheme, Tags};
+    let input = cube_with_square_uvs();
+    let dir = temp_dir("limit");
+    let (path, output) = (dir.join("in.obj"), dir.join("out.obj"));
+    std::fs::write(&path, &input).unwrap();
+    let obj = read_obj_with_tags(&input).unwrap();
+    let want = subdivide_limit_with(
+        &obj.mesh,
+        &obj.attributes,
+        &Options::new(Scheme::CatmullClark, 2),
+        &Tags::default(),
+    )
+    .unwrap();
+    for (flag, moved) in [("--limit", true), ("--normals", false)] {
+        let args = ["--levels", "2", flag, path.to_str().unwrap(), "-o", output.to_str().unwrap()];
+        let run = subsurf(&args);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let text = std::fs::read_to_string(&output).unwrap();
+        let got = read_obj_with_tags(&text).unwrap();
+        let (normals, corners) = normals_of(&text);
+        // One vn per vertex, each corner naming its own vertex's (f v/vt/vn).
+        assert_eq!(normals.len(), got.mesh.num_vertices(), "{flag}");
+        assert!(corners.iter().all(|&(v, n)| v == n), "{flag}");
+        // The library's limit normals, and its limit positions and UVs with --limit only.
+        for (n, m) in normals.iter().zip(want.normals().unwrap().chunks_exact(3)) {
+            assert!((0..3).all(|k| (n[k] - m[k]).abs() < 1e-6), "{flag}: {n:?} against {m:?}");
+        }
+        let plain = subsurf::subdivide(&obj.mesh, &Options::new(Scheme::CatmullClark, 2)).unwrap();
+        let positions = if moved { want.positions() } else { &plain.positions[..] };
+        assert_eq!(got.mesh.positions, positions, "{flag}");
+        let uv = &got.attributes[0].values;
+        let plain_uv = run_on("plain", &input, &["--levels", "2"]).attributes[0].values.clone();
+        let want_uv = if moved { &want.attributes()[0].values } else { &plain_uv };
+        assert_eq!(uv, want_uv, "{flag}: UVs");
+    }
+    // Without UVs: f v//vn.
+    let run = subsurf(&["--levels", "1", "--normals", "--ignore-uv", path.to_str().unwrap()]);
+    let text = String::from_utf8(run.stdout).unwrap();
+    assert!(text.lines().any(|l| l.starts_with("f ") && l.contains("//")), "f v//vn");
+    // Doo-Sabin has no limit: a message, and a failure exit.
+    let run = subsurf(&["--scheme", "doo-sabin", "--limit", path.to_str().unwrap()]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("normals: true"));
+}

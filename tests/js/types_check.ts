@@ -2,7 +2,7 @@
 // node_modules/subsurf and type-checks it with the pinned `tsc` (strict, no skipLibCheck), so
 // the shipped declarations compile and say what the API accepts. Each `@ts-expect-error` marks a
 // misuse the types must refuse: tsc fails if the line after it type-checks.
-import init, { BaseMesh, readObj, shape, subdivide, toDrawable, type DrawableMesh, type FVarLinearMode, type SubdivideResult } from 'subsurf';
+import init, { BaseMesh, Evaluator, readObj, shape, subdivide, toDrawable, type DrawableMesh, type EvaluatedFrame, type FVarLinearMode, type StencilArrays, type SubdivideResult } from 'subsurf';
 import { subdivide as subdivideInNode } from 'subsurf/node';
 
 await init();
@@ -39,6 +39,24 @@ const drawable: DrawableMesh = toDrawable(refinedUv);
 const origins: Uint32Array = drawable.origins;
 const uvs: Float32Array | undefined = drawable.attributes.uv?.array;
 
+const limit: SubdivideResult = subdivide(cube, { levels: 2, limit: true, normals: true });
+const limitNormals: Float32Array | undefined = limit.normals;
+const evaluator: Evaluator = new BaseMesh(cube).evaluator({ levels: 2, limit: true, normals: true });
+let frame: EvaluatedFrame = evaluator.evaluate(new Float32Array(24));
+frame = evaluator.evaluate(new Float32Array(24), frame);
+const frameNormals: Float32Array | undefined = frame.normals;
+const table: StencilArrays = evaluator.stencils();
+const tangents: [Float32Array, Float32Array] | undefined = table.tangentWeights;
+const built: SubdivideResult = evaluator.result();
+const colours: Float32Array = evaluator.evaluateAttribute(new Float32Array(24), 3);
+const counts: number = evaluator.numVertices + evaluator.numControlVertices + evaluator.stencilBytes;
+const hasNormals: boolean = evaluator.hasNormals;
+evaluator.free();
+
+// @ts-expect-error: evaluate takes a Float32Array
+evaluator.evaluate([0, 0, 0]);
+// @ts-expect-error: limit is a boolean
+subdivide(cube, { limit: 'yes' });
 // @ts-expect-error: an unknown scheme name
 subdivide(cube, { scheme: 'butterfly' });
 // @ts-expect-error: positions must be a Float32Array
@@ -58,4 +76,4 @@ subdivide(cube, { fvarLinear: 'linear' });
 // @ts-expect-error: face-varying indices must be a Uint32Array
 subdivide({ ...cube, attributes: { uv: { array: new Float32Array(8), itemSize: 2, indices: [0, 1, 2] } } });
 
-export const used = [triangles, moved, faces, colors, uvIndices, origins, uvs];
+export const used = [triangles, moved, faces, colors, uvIndices, origins, uvs, limitNormals, frameNormals, tangents, built, colours, counts, hasNormals];
