@@ -56,11 +56,10 @@ pub fn evaluate_with_tangents<V: Primvar>(
         normals: Vec::with_capacity(3 * n),
     };
     let with_rows = !rows.is_empty();
-    let mut out_rows = rows.with_capacity(if with_rows { n } else { 0 });
+    // With tangent rows, all three rows of a vertex come from `Primvar::limit_rows` below.
+    let position_rows = with_rows && !tangent_rows;
+    let mut out_rows = rows.with_capacity(if position_rows { n } else { 0 });
     let mut row_sum = rows.sum(&mesh.he_from, None);
-    let mut tangents =
-        (with_rows && tangent_rows).then(|| [rows.with_capacity(n), rows.with_capacity(n)]);
-    let mut recorded: [Stencil; 2] = Default::default();
     let mut hood = Neighbourhood::default();
     for v in mesh.vertex_indices() {
         rules.gather(mesh, v, &mut hood);
@@ -74,17 +73,19 @@ pub fn evaluate_with_tangents<V: Primvar>(
         frame.tangents[0].extend(first);
         frame.tangents[1].extend(second);
         frame.normals.extend(normal(first, second));
-        if with_rows {
+        if position_rows {
             out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
         }
-        if let Some([first, second]) = tangents.as_mut() {
-            let [a, b] = &mut recorded;
-            a.sources.clear();
-            b.sources.clear();
-            rules.tangents(&hood, a, b);
-            first.push(&mut row_sum, |w| a.replay(w));
-            second.push(&mut row_sum, |w| b.replay(w));
-        }
+    }
+    let mut tangents = None;
+    if with_rows && tangent_rows {
+        let (positions, both) = rows.limit_rows(mesh, &mut |v, [position, first, second]| {
+            rules.gather(mesh, v, &mut hood);
+            rules.position(&hood, position);
+            rules.tangents(&hood, first, second);
+        });
+        out_rows = positions;
+        tangents = Some(both);
     }
     (frame, out_rows, tangents)
 }

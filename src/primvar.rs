@@ -1,7 +1,8 @@
 //! Applying the rules' weights to data (OpenSubdiv's `Far::PrimvarRefiner`): the sinks that turn
 //! a new point's [`Weights`] into a value, for positions and for rows of any width.
 
-use crate::rules::Weights;
+use crate::mesh::HalfEdgeMesh;
+use crate::rules::{Stencil, Weights};
 use glam::Vec3;
 
 /// Sums weighted positions (or any three floats per vertex): the parent level's `points` by
@@ -319,6 +320,28 @@ pub trait Primvar: Sized {
     /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
     /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;
+    /// The values of three masks per vertex of `mesh` (the limit position and two tangents),
+    /// which `masks(v, recorded)` records into three cleared [`Stencil`]s: the position rows,
+    /// and the two tangent rows. A kind whose three sums share their work overrides this.
+    fn limit_rows(
+        &self,
+        mesh: &HalfEdgeMesh,
+        masks: &mut dyn FnMut(u32, &mut [Stencil; 3]),
+    ) -> (Self, [Self; 2]) {
+        let n = mesh.num_vertices();
+        let mut out = [self.with_capacity(n), self.with_capacity(n), self.with_capacity(n)];
+        let mut sum = self.sum(&mesh.he_from, None);
+        let mut recorded: [Stencil; 3] = Default::default();
+        for v in 0..n as u32 {
+            recorded.iter_mut().for_each(|s| s.sources.clear());
+            masks(v, &mut recorded);
+            for (rows, mask) in out.iter_mut().zip(&recorded) {
+                rows.push(&mut sum, |w| mask.replay(w));
+            }
+        }
+        let [positions, first, second] = out;
+        (positions, [first, second])
+    }
 }
 
 impl Primvar for Vec<[f32; 3]> {

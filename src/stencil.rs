@@ -13,8 +13,9 @@
 //! gives its stencils without code of its own. [`crate::scheme::stencil_table`] is the entry point.
 
 use crate::error::{Error, Result};
+use crate::mesh::HalfEdgeMesh;
 use crate::primvar::Primvar;
-use crate::rules::Weights;
+use crate::rules::{Source, Stencil, Weights};
 
 /// The stencils of one level's vertices while the levels run: for vertex `i`, the control
 /// vertices `indices[s..s + n]` and their `weights`, where `[s, n] = spans[i]`. Rows are
@@ -283,6 +284,93 @@ impl Primvar for Stencils {
     fn is_empty(&self) -> bool {
         self.spans.is_empty()
     }
+
+    /// The three rows of a vertex in one pass: the masks are merged per parent vertex first, so
+    /// that each parent row is read once and feeds three sums; the rows share their control
+    /// vertices (a weight is kept as 0 where one mask does not reach a vertex the others do),
+    /// which [`StencilTable::with_tangents`] then takes as they are.
+    fn limit_rows(
+        &self,
+        mesh: &HalfEdgeMesh,
+        masks: &mut dyn FnMut(u32, &mut [Stencil; 3]),
+    ) -> (Self, [Self; 2]) {
+        let n = mesh.num_vertices();
+        let mut out = [self.with_capacity(n), self.with_capacity(n), self.with_capacity(n)];
+        let mut recorded: [Stencil; 3] = Default::default();
+        let mut sources: Vec<(u32, [f64; 3])> = Vec::with_capacity(32);
+        let mut sums = vec![[0.0f64; 3]; self.num_control];
+        let mut stamps = vec![0u32; self.num_control];
+        let mut touched: Vec<u32> = Vec::with_capacity(256);
+        for (v, stamp) in (0..n as u32).zip((1..=u32::MAX).cycle()) {
+            if stamp == 1 {
+                stamps.fill(0);
+            }
+            recorded.iter_mut().for_each(|s| s.sources.clear());
+            masks(v, &mut recorded);
+            sources.clear();
+            for (k, mask) in recorded.iter().enumerate() {
+                for &(source, weight) in &mask.sources {
+                    let parent = match source {
+                        Source::Vertex(p) => p,
+                        Source::Corner(h) => mesh.he_from[h as usize],
+                        // Limit masks weight no face point.
+                        Source::FacePoint(_) => continue,
+                    };
+                    match sources.iter_mut().find(|(p, _)| *p == parent) {
+                        Some((_, w)) => w[k] += f64::from(weight),
+                        None => {
+                            let mut w = [0.0; 3];
+                            w[k] = f64::from(weight);
+                            sources.push((parent, w));
+                        }
+                    }
+                }
+            }
+            touched.clear();
+            for &(parent, w) in &sources {
+                let (controls, weights) = self.row(parent as usize);
+                for (&c, &cw) in controls.iter().zip(weights) {
+                    let slot = c as usize;
+                    let cw = f64::from(cw);
+                    let products = [cw * w[0], cw * w[1], cw * w[2]];
+                    if stamps[slot] == stamp {
+                        let sum = &mut sums[slot];
+                        (0..3).for_each(|k| sum[k] += products[k]);
+                    } else {
+                        stamps[slot] = stamp;
+                        sums[slot] = products;
+                        touched.push(c);
+                    }
+                }
+            }
+            touched.sort_unstable();
+            let [a, b, c] = &mut out;
+            let start = a.indices.len();
+            if a.overflowed || self.overflowed || start + touched.len() > a.limit {
+                for rows in [&mut *a, &mut *b, &mut *c] {
+                    rows.overflowed = true;
+                    rows.spans.push([start as u32, 0]);
+                }
+                continue;
+            }
+            for &control in &touched {
+                let w = sums[control as usize];
+                if w == [0.0; 3] {
+                    continue;
+                }
+                for (rows, &weight) in [&mut *a, &mut *b, &mut *c].into_iter().zip(&w) {
+                    rows.indices.push(control);
+                    rows.weights.push(weight as f32);
+                }
+            }
+            let span = [start as u32, (a.indices.len() - start) as u32];
+            for rows in [&mut *a, &mut *b, &mut *c] {
+                rows.spans.push(span);
+            }
+        }
+        let [positions, first, second] = out;
+        (positions, [first, second])
+    }
 }
 
 /// For every output vertex of a call, the control vertices and weights whose weighted sum gives
@@ -351,6 +439,14 @@ impl StencilTable {
     /// This table of positions with the tables of the two tangents (same rows, same control
     /// vertices) merged into it: each row's entries become the union of the three rows'.
     pub(crate) fn with_tangents(self, first: StencilTable, second: StencilTable) -> StencilTable {
+        let shared = |t: &StencilTable| t.offsets == self.offsets && t.indices == self.indices;
+        if shared(&first) && shared(&second) {
+            // Rows made together (`Stencils::limit_rows`) already share their entries.
+            return StencilTable {
+                tangent_weights: Some(Box::new([first.weights, second.weights])),
+                ..self
+            };
+        }
         let rows = self.num_stencils();
         let capacity = self.indices.len() + self.indices.len() / 4;
         let mut offsets = Vec::with_capacity(rows + 1);
