@@ -4,3 +4,6 @@ import { initSync } from './subsurf.js';
 initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
 
 export * from './subsurf.js';
+// Code written for browsers (`import init from 'subsurf'; await init();`) runs unchanged: the
+// module is initialised already, and init() then returns at once.
+export { default } from './subsurf.js';

@@ -35,6 +35,7 @@ check('package.json', () => {
   assert.equal(pkg.type, 'module');
   assert.equal(pkg.types, './subsurf.d.ts');
   assert.ok(pkg.exports['.'] && pkg.exports['./node'], 'exports . and ./node');
+  assert.equal(pkg.exports['.'].node, './node.js', "'.' has a node condition");
   assert.deepEqual(pkg.exports['./webgpu'], { types: './webgpu.d.ts', default: './webgpu.js' });
 });
 
@@ -51,7 +52,10 @@ writeFileSync(
 );
 
 // ---- the three ways to load it
-const { node, webgpu } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+const { node, web, webgpu } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+// `import ... from 'subsurf'` in Node takes the "node" condition: ready with no init, and a
+// browser-style `await init()` returns at once.
+await web.default();
 const bytes = readFileSync(join(installed, 'subsurf_bg.wasm'));
 // A query string gives a separate module instance, so each loader starts from scratch.
 const viaInitSync = await import(pathToFileURL(join(installed, 'subsurf.js')).href + '?initSync');
@@ -66,7 +70,7 @@ const cube = () => ({
 });
 const near = (a, b) => Math.abs(a - b) < 1e-6;
 
-for (const [name, api] of [['subsurf/node', node], ['initSync', viaInitSync], ['await init', viaInit]]) {
+for (const [name, api] of [['subsurf/node', node], ["'subsurf' in Node, no init", web], ['initSync', viaInitSync], ['await init', viaInit]]) {
   check(`${name}: version`, () => assert.equal(api.version(), cargoVersion));
 
   check(`${name}: cube counts`, () => {
