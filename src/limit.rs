@@ -8,7 +8,7 @@ use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::primvar::{FVarSum, PointSum, Primvar, RowSum};
 use crate::rules::limit::{LimitRules, Neighbourhood};
 use crate::rules::Stencil;
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 
 /// The limit positions, tangents and normals of one level's vertices, three floats each.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -21,12 +21,16 @@ pub struct LimitFrame {
     pub normals: Vec<f32>,
 }
 
-/// The unit vector along `first × second`, or zero when there is none.
+/// The unit vector along `first × second`, or zero when there is none. In f64: tangents that
+/// nearly cancel give a cross product whose f32 length loses digits (subnormal), and the
+/// normal would not come out unit length.
 pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
-    let n = Vec3::from_array(first).cross(Vec3::from_array(second));
+    let wide = |v: [f32; 3]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
+    let n = wide(first).cross(wide(second));
     let length = n.length();
     if length > 0.0 && length.is_finite() {
-        (n / length).to_array()
+        let unit = n / length;
+        [unit.x as f32, unit.y as f32, unit.z as f32]
     } else {
         [0.0; 3]
     }

@@ -9,13 +9,15 @@
 //! refined vertex and the positions do not change; a fuzzed extra channel (any size, values or
 //! indices, so face-varying with any seams, in any face-varying mode) is refined, its indices
 //! parallel to the result's and in range, or refused with `InvalidAttribute` or `Unsupported`.
+//! And the evaluator with normals (and the limit, when `limit`): built, it gives the call's
+//! positions for the control positions, and unit (or zero) normals; or both refuse alike.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use subsurf::attributes::Attribute;
-use subsurf::scheme::{predict_counts, subdivide_with_attributes};
-use subsurf::{subdivide, Boundary, Error, HalfEdgeMesh, Options, PolyMesh, Scheme};
+use subsurf::scheme::{predict_counts, subdivide_refined_with, subdivide_with_attributes};
+use subsurf::{subdivide, Boundary, Error, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme};
 use subsurf_fuzz::{check_error, check_result, repeats_a_vertex, MAX_ELEMENTS, MAX_FACES};
 
 #[derive(Arbitrary, Debug)]
@@ -28,6 +30,8 @@ struct Input {
     extra: Option<Channel>,
     /// Keep a face's corners as they come (a vertex may repeat) instead of dropping repeats.
     repeats: bool,
+    /// The evaluator at the limit (else refined points with normals).
+    limit: bool,
 }
 
 #[derive(Arbitrary, Debug)]
@@ -75,6 +79,7 @@ fuzz_target!(|input: Input| {
     let faceless_doo_sabin = mesh.num_faces() == 0 && options.schemes.contains(&Scheme::DooSabin);
     let result = subdivide(&mesh, &options);
     check_attributes(&mesh, &options, &result, input.extra, &what);
+    check_evaluator(&mesh, &options, input.limit, &what);
     match result {
         Ok(out) if faceless_doo_sabin && out.positions.is_empty() => {}
         Ok(out) => {
@@ -163,6 +168,42 @@ fn check_attributes(
         }
         (Err(_), Err(_)) => {}
         (got, expected) => panic!("{what}: with channels {got:?}, without {expected:?}"),
+    }
+}
+
+/// The evaluator against the call with the same options: see the module docs.
+fn check_evaluator(mesh: &PolyMesh, options: &Options, limit: bool, what: &str) {
+    let options = Options { limit, normals: true, ..options.clone() };
+    let tags = subsurf::Tags::default();
+    let base = HalfEdgeMesh::from_poly(mesh).expect("a valid mesh");
+    let evaluator = Evaluator::new(&base, &[], &options, &tags);
+    let call = subdivide_refined_with(mesh, &[], &options, &tags);
+    match (evaluator, call) {
+        (Ok(evaluator), Ok(mut call)) => {
+            let normals_want = call.take_normals().expect("normals were asked for");
+            let n = 3 * evaluator.num_vertices();
+            assert_eq!(n, call.positions().len(), "{what}: output vertices");
+            let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+            evaluator.evaluate(&mesh.positions, &mut positions, Some(&mut normals)).unwrap();
+            for (a, b) in positions.iter().zip(call.positions()) {
+                assert!((a - b).abs() <= 1e-4 * (1.0 + b.abs()), "{what}: evaluator {a} vs {b}");
+            }
+            assert_eq!(normals.len(), normals_want.len());
+            for n in normals.chunks_exact(3) {
+                let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                assert!(length == 0.0 || (length - 1.0).abs() < 1e-4, "{what}: normal {n:?}");
+            }
+        }
+        (Err(e), Err(f)) => {
+            check_error(&e, what);
+            assert_eq!(std::mem::discriminant(&e), std::mem::discriminant(&f), "{what}: {e} / {f}");
+        }
+        (Err(Error::TooLarge(_)), Ok(_)) => {}
+        (got, expected) => panic!(
+            "{what}: evaluator {:?}, call {:?}",
+            got.map(|e| e.num_vertices()),
+            expected.map(|r| r.positions().len())
+        ),
     }
 }
 
