@@ -13,8 +13,14 @@
 // OBJ with vt) show the checker texture with their vertices split along the seams, that the
 // fvarLinear menu changes the picture, that the memory guard refuses a level with a message, that a big job still running is
 // superseded by a later change while the page stays responsive, that the OBJ download holds the
-// shown mesh, and that mouse and touch move the camera. Screenshots go to artifacts/. Exits
-// non-zero on failure.
+// shown mesh, and that mouse and touch move the camera; that the surface is shaded with the
+// library's limit normals and the limit surface checkbox gives the library's limit (disabled for
+// Doo-Sabin); that animate moves the surface every frame through one evaluator (frames equal
+// subdivide of the deformed cage, a positive CPU time per frame, the still picture back after)
+// while the GPU toggle says WebGPU is missing; and, in a second browser with WebGPU (SwiftShader),
+// that the GPU path draws a shaded, moving surface on the WebGPU canvas from the GPU evaluator's
+// buffers, equal to the CPU's frame, with its time per frame shown. Screenshots go to
+// artifacts/. Exits non-zero on failure.
 import assert from 'node:assert/strict';
 import { createServer } from 'node:http';
 import { copyFileSync, mkdirSync, readFileSync, existsSync, statSync, writeFileSync } from 'node:fs';
