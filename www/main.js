@@ -3,6 +3,21 @@
 // the result over its control cage. The page itself only draws: meshes, OBJ parsing and writing,
 // the predicted sizes, normals and edge lists all come from subsurf (see worker.js).
 //
+// Normals: every job asks subdivide for `normals: true` and the surface is shaded with them: the
+// limit surface's normals where the last level's scheme has limit masks (Catmull-Clark, Loop,
+// Quad/Triangle on quads or triangles only), else normals from the faces. The "limit surface"
+// checkbox adds `limit: true` (the points move onto the limit); it is disabled, with a note,
+// where the last scheme has no limit (Doo-Sabin, √3) and at level 0, and the worker drops it,
+// saying why, where the library refuses it all the same (Quad/Triangle on a mixed mesh, the
+// 'average' boundary).
+//
+// Animate (animation.js): the cage is twisted about the vertical axis and a wave runs along it,
+// every frame; one Evaluator (BaseMesh.evaluator with the shown result's options, built on this
+// page, again only when the result changes) gives each frame's positions and normals, written
+// over the WebGL2 vertex buffers (the CPU path), or, with the GPU toggle, subsurf/webgpu's
+// GpuEvaluator computes them and gpu-renderer.js draws its buffers on a WebGPU canvas over the
+// WebGL one (the GPU path). Without WebGPU the toggle is disabled and says why.
+//
 // UVs: the built-in meshes carry UV layouts and OBJ files their vt lines; subsurf refines them as
 // a face-varying channel (the fvarLinear menu picks OpenSubdiv's mode), toDrawable splits the
 // refined vertices along the seams, and the surface shows a checker texture (renderer.js).
@@ -21,13 +36,22 @@
 // vertices: more than data-vertices where UV seams split them); data-busy="true" from a
 // change until its result is on screen (or refused); data-error holds the error message on
 // screen, if any; data-max-level the highest level under the memory guard; data-superseded how
-// many jobs were cut short. window.subsurfDemo.creases() lists the creases of the selected mesh
-// as [a, b, sharpness], edgeScreenPosition(i) gives the midpoint of cage edge i
-// (display.cageEdges) in client pixels, pickAt(x, y) the cage edge a click there would toggle.
+// many jobs were cut short; data-normals "limit" or "faces" (where the shown result's normals
+// come from) and data-limit ("true" when its points are on the limit surface). The animation:
+// data-animate "true" or "false"; data-frames, the animated frames drawn so far; data-cpu-ms and
+// data-gpu-ms, the mean time per frame of evaluate on the CPU and of the evaluation on the GPU
+// over the last frames measured (absent until measured); data-gpu "on" or "off" (the GPU toggle)
+// or "unavailable" (no WebGPU; absent until WebGPU has been looked for) and data-gpu-timing
+// "timestamp-query", "submitted-work-done" or "none" (how the GPU time is measured; the query
+// ?gpu-timing=work-done forces the second). window.subsurfDemo.creases() lists the creases of
+// the selected mesh as [a, b, sharpness], edgeScreenPosition(i) gives the midpoint of cage edge i
+// (display.cageEdges) in client pixels, pickAt(x, y) the cage edge a click there would toggle,
+// and animator is the Animator (its evaluator, last frame, deformed cage and GPU evaluator).
 import { compileSubsurf, JobRunner } from './jobs.js';
 import { OrbitCamera, attachCameraControls, boundsOf } from './camera.js';
 import { Renderer } from './renderer.js';
 import { edgeKey, pickEdge, projectVertices } from './picking.js';
+import { Animator, probeWebGpu } from './animation.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -42,6 +66,8 @@ const PICK_RADIUS = 6;
 const CLICK_SLOP = 4;
 /** OpenSubdiv's infinitely sharp (Sdc::Crease::SHARPNESS_INFINITE). */
 const SHARPNESS_INFINITE = 10;
+/** Schemes without limit masks: limit: true throws for a last level of these. */
+const NO_LIMIT = new Set(['doo-sabin', 'sqrt3']);
 
 const SHAPE_LABELS = {
   cube: 'Cube (6 quads)',
@@ -106,18 +132,25 @@ const state = {
   maxLevel: null,
   predicted: null, // { vertices, faces } after 0..LEVEL_CAP levels, for the last planned job
   creaseSharpness: SHARPNESS_INFINITE, // what a click gives a smooth edge
+  limit: false, // the limit surface checkbox (asked for only where the last scheme has a limit)
+  animate: false,
+  gpu: false, // the GPU toggle: the animation runs on WebGPU
 };
 // option value → source; a source also holds its tags: `creases` (edge key → { a, b, sharpness },
 // as edited) and `fileTags` (readObj's tags: corners, holes, creaseMethod, ...; null for shapes)
 const sources = new Map();
-let display = null; // what is on screen: { source, schemes, level, cage, cageEdges, result, job }
+// what is on screen: { source, schemes, level, cage, cageEdges, result, surface, edges, options, job }
+let display = null;
 let hovered = -1; // the cage edge under the pointer, or -1
 let runner;
 let renderer;
+let animator;
+let animationToken = 0;
 let notice = '';
 let files = 0;
 const camera = new OrbitCamera();
 const canvas = $('view');
+const gpuCanvas = $('view-gpu');
 const timings = (window.subsurfTimings = { navigationToReady: null, firstJobMs: null });
 
 // ---------------------------------------------------------------------------------------------
@@ -131,13 +164,16 @@ function requestDraw(after) {
   if (after) afterDraw.push(after);
   if (drawPending) return;
   drawPending = true;
-  requestAnimationFrame(() => {
+  requestAnimationFrame((now) => {
     drawPending = false;
     const ratio = Math.min(devicePixelRatio, 2);
     const width = Math.round(canvas.clientWidth * ratio);
     const height = Math.round(canvas.clientHeight * ratio);
     if (canvas.width !== width || canvas.height !== height) Object.assign(canvas, { width, height });
-    if (renderer) {
+    const animating = state.animate && animator?.ready;
+    if (animating) animationFrame(now);
+    // On the GPU path the WebGPU canvas covers this one; the WebGL view is left as it was.
+    if (renderer && !(animating && animator.onGpu)) {
       renderer.draw(camera, {
         smooth: document.querySelector('input[name=shading]:checked').value === 'smooth',
         wireframe: $('wireframe').checked,
@@ -147,6 +183,7 @@ function requestDraw(after) {
     }
     const callbacks = afterDraw.splice(0);
     if (callbacks.length) requestAnimationFrame(() => callbacks.forEach((callback) => callback()));
+    if (state.animate && animator?.ready) requestDraw();
   });
 }
 
@@ -228,6 +265,7 @@ function submit({ clampLevel = false } = {}) {
     boundary: state.boundary,
     maxFaces: state.maxFaces,
     fvarLinear: state.fvarLinear,
+    limit: state.limit && limitUnavailable() === '',
     // Until its mesh is back from the worker, a file's own tags apply (null).
     tags: source.mesh ? tagOptions(source) : null,
   };
@@ -240,6 +278,7 @@ function submit({ clampLevel = false } = {}) {
     error: (message) => failed(message, context),
   });
   root.dataset.superseded = String(runner.superseded);
+  updateLimitControl();
   setBusy(true, `Subdividing ${source.label}…`);
 }
 
@@ -273,16 +312,17 @@ function planned(message, context) {
 }
 
 function finished(message, context) {
-  const { result, surface, edges, cageEdges, level, uvNotice, timings: workerTimings } = message;
+  const { result, surface, edges, cageEdges, level, uvNotice, limitNotice, normals, limit, options, timings: workerTimings } = message;
   const { source, cage } = context;
   renderer.setRefined({ positions: result.positions, surface, edges });
   renderer.setCage({ positions: cage.positions, edges: cageEdges });
   const newSource = display?.source !== source;
   const schemes = schemeList().slice(0, level);
-  display = { source, schemes, level, cage, cageEdges, result, job: message.id };
+  display = { source, schemes, level, cage, cageEdges, result, surface, edges, options, normals, limit, job: message.id };
   hovered = -1;
   updateCageTags();
   if (newSource) camera.frame(boundsOf(cage.positions));
+  if (state.animate) prepareAnimation();
 
   const faces = result.faceSizes.length;
   const vertices = result.positions.length / 3;
@@ -295,7 +335,7 @@ function finished(message, context) {
   $('time').textContent = `${workerTimings.subdivide.toFixed(1)} ms`;
   $('download').disabled = false;
   $('download').title = `Save the ${count(faces)} faces as a Wavefront OBJ file`;
-  const notices = [notice, uvNotice].filter(Boolean).join('\n');
+  const notices = [notice, uvNotice, limitNotice].filter(Boolean).join('\n');
   showMessage(notices || `${source.label}: ${describeSchemes(schemes)}.`, notices ? 'notice' : '');
 
   requestDraw(() => {
@@ -303,7 +343,8 @@ function finished(message, context) {
     if (!runner.busy) setBusy(false);
     const shownAfter = performance.now() - context.posted;
     $('time-detail').textContent =
-      `+ normals, edges and the drawable mesh ${workerTimings.display.toFixed(1)} ms; on screen ${shownAfter.toFixed(0)} ms after the change`;
+      `+ edges and the drawable mesh ${workerTimings.display.toFixed(1)} ms; on screen ${shownAfter.toFixed(0)} ms after the change; ` +
+      `${normals === 'limit' ? 'limit' : 'face'} normals${limit ? ', points on the limit' : ''}`;
     Object.assign(root.dataset, {
       shape: source.value,
       scheme: schemes.join(','),
@@ -318,6 +359,8 @@ function finished(message, context) {
       uv: String(Boolean(surface.uvs)),
       fvarLinear: context.fvarLinear,
       drawnVertices: String(surface.positions.length / 3),
+      normals,
+      limit: String(limit),
     });
     if (!root.dataset.ready) {
       timings.navigationToReady = performance.now();
@@ -417,10 +460,11 @@ function showCreaseSharpness() {
   $('crease-sharpness-value').textContent = value >= SHARPNESS_INFINITE ? `${value} (∞)` : String(value);
 }
 
-/** The cage's vertices on screen, in CSS pixels of the canvas (see picking.js). */
+/** The cage's vertices on screen, in CSS pixels of the canvas (see picking.js); deformed while animating. */
 function cageOnScreen() {
   const { viewProjection } = camera.view(canvas.width / Math.max(canvas.height, 1));
-  return projectVertices(display.cage.positions, viewProjection, canvas.clientWidth, canvas.clientHeight);
+  const positions = state.animate && animator.ready ? animator.prepared.deformed : display.cage.positions;
+  return projectVertices(positions, viewProjection, canvas.clientWidth, canvas.clientHeight);
 }
 
 /** Edits act on the mesh on screen, and only while its cage (what the user clicks) is shown. */
@@ -493,6 +537,155 @@ function attachCreaseEditing() {
     showCreaseSharpness();
   });
   $('clear-creases').addEventListener('click', clearCreases);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The limit surface and the animation (animation.js)
+
+/** Why the limit surface cannot be asked for with the current schemes and level, or ''. */
+function limitUnavailable() {
+  if (state.level === 0) return 'The limit surface needs at least one level.';
+  const last = schemeList()[state.level - 1];
+  if (NO_LIMIT.has(last)) {
+    return `${label(SCHEME_LABELS, last).replace(/ \(.*\)$/, '')} has no limit masks: no limit surface, and its normals come from the faces.`;
+  }
+  return '';
+}
+
+function updateLimitControl() {
+  const why = limitUnavailable();
+  $('limit').disabled = why !== '';
+  $('limit-label').classList.toggle('disabled', why !== '');
+  $('limit-hint').textContent = why ||
+    (state.limit ? 'The points are moved onto the limit surface.' : 'The points stay where the levels put them; the shading uses the limit normals.');
+}
+
+/** The subsurf module on this page (the workers have their own), for the animation's Evaluator. */
+let subsurfOnPage = null;
+let wasmModule = null;
+function loadSubsurf() {
+  subsurfOnPage ??= import('./pkg/subsurf.js').then((subsurf) => {
+    subsurf.initSync({ module: wasmModule });
+    return subsurf;
+  });
+  return subsurfOnPage;
+}
+
+/** Builds the animation's evaluator for the result on screen; a later call or a stop supersedes it. */
+async function prepareAnimation() {
+  const token = ++animationToken;
+  // The evaluator of an earlier result must not write into the buffers of this one.
+  animator.release();
+  updateGpuView();
+  if (!display) return;
+  const shown = display;
+  try {
+    await animator.prepare(shown);
+  } catch (error) {
+    if (token !== animationToken) return;
+    setAnimate(false);
+    showMessage(`Cannot animate this result: ${error.message ?? error}`, 'error');
+    return;
+  }
+  if (token !== animationToken) {
+    if (!state.animate) animator.release();
+    return;
+  }
+  if (state.gpu) startGpuPath();
+  updateGpuView();
+  requestDraw();
+}
+
+function startGpuPath() {
+  try {
+    animator.startGpu();
+  } catch (error) {
+    setGpu(false);
+    showMessage(`The GPU path could not start: ${error.message ?? error}\nThe CPU path runs.`, 'notice');
+  }
+}
+
+function setAnimate(on) {
+  state.animate = on;
+  $('animate').checked = on;
+  root.dataset.animate = String(on);
+  $('frame-times').hidden = !on;
+  if (on) {
+    prepareAnimation();
+    return;
+  }
+  animationToken++;
+  animator.release();
+  // The still result again, in the buffers its frames overwrote.
+  if (display) {
+    const { result, surface, cage } = display;
+    renderer.updateRefined({ positions: result.positions, surfacePositions: surface.positions, surfaceNormals: surface.normals });
+    renderer.updateCage(cage.positions);
+  }
+  updateGpuView();
+  requestDraw();
+}
+
+function setGpu(on) {
+  state.gpu = on;
+  $('gpu').checked = on;
+  if (on && state.animate && animator.ready) startGpuPath();
+  if (!on) animator.stopGpu();
+  updateGpuView();
+  requestDraw();
+}
+
+/** Shows the WebGPU canvas while the GPU path draws, and says what the GPU toggle can do. */
+function updateGpuView() {
+  gpuCanvas.hidden = !(state.animate && animator.onGpu);
+  const gpu = animator.gpu;
+  if (gpu) root.dataset.gpu = !gpu.available ? 'unavailable' : state.gpu ? 'on' : 'off';
+}
+
+/** One animated frame: deform, evaluate, upload (CPU) or evaluate and draw (GPU); then the figures. */
+function animationFrame(now) {
+  try {
+    animator.step(now, camera, { cage: $('cage').checked });
+  } catch (error) {
+    if (animator.onGpu) {
+      setGpu(false);
+      showMessage(`The GPU path stopped: ${error.message ?? error}\nThe CPU path runs.`, 'notice');
+    } else {
+      setAnimate(false);
+      showMessage(`The animation stopped: ${error.message ?? error}`, 'error');
+    }
+    return;
+  }
+  const ms = (mean) => (mean === null ? '–' : mean.toFixed(2));
+  const cpu = animator.cpuTime.mean;
+  const gpu = animator.gpuTime.mean;
+  $('frame-times').textContent = `CPU: ${ms(cpu)} ms/frame · GPU: ${ms(gpu)} ms/frame`;
+  root.dataset.frames = String(animator.frames);
+  if (cpu !== null) root.dataset.cpuMs = cpu.toFixed(4);
+  if (gpu !== null) root.dataset.gpuMs = gpu.toFixed(4);
+}
+
+async function startGpuProbe() {
+  // ?gpu-timing=work-done measures with queue.onSubmittedWorkDone even where timestamp queries exist.
+  const timestamps = new URLSearchParams(location.search).get('gpu-timing') !== 'work-done';
+  const gpu = await probeWebGpu({ timestamps });
+  animator.gpu = gpu;
+  $('gpu').disabled = !gpu.available;
+  $('gpu-label').classList.toggle('disabled', !gpu.available);
+  $('gpu-note').textContent = gpu.available
+    ? `WebGPU: the same evaluator in a compute shader, drawn from its buffers (GPU time from ${gpu.timestamps ? 'timestamp queries' : 'queue.onSubmittedWorkDone'}).`
+    : gpu.note;
+  $('gpu-note').classList.toggle('warn', !gpu.available);
+  root.dataset.gpuTiming = gpu.available ? animator.gpuTiming : 'none';
+  if (gpu.available) {
+    gpu.device.lost.then((info) => {
+      animator.gpu = { available: false, note: `WebGPU not available: the device was lost (${info.message || info.reason}); the CPU path runs.` };
+      $('gpu-note').textContent = animator.gpu.note;
+      $('gpu').disabled = true;
+      setGpu(false);
+    });
+  }
+  updateGpuView();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -652,6 +845,13 @@ function attachControls() {
     submit();
   });
 
+  $('limit').addEventListener('change', (event) => {
+    state.limit = event.target.checked;
+    submit();
+  });
+  $('animate').addEventListener('change', (event) => setAnimate(event.target.checked));
+  $('gpu').addEventListener('change', (event) => setGpu(event.target.checked));
+
   for (const input of document.querySelectorAll('input[name=shading], #wireframe, #cage, #texture')) {
     input.addEventListener('change', () => requestDraw());
   }
@@ -691,7 +891,11 @@ async function main() {
   const gl = canvas.getContext('webgl2', { alpha: false, antialias: true, preserveDrawingBuffer: true });
   if (!gl) throw new Error('this browser has no WebGL2, which the demo needs to draw');
   renderer = new Renderer(gl);
+  animator = new Animator({ renderer, gpuCanvas, loadSubsurf });
+  root.dataset.animate = 'false';
+  const gpuProbe = startGpuProbe();
   const module = await compileSubsurf();
+  wasmModule = module;
   const started = await JobRunner.create(module);
   runner = started.runner;
   const { info } = started;
@@ -710,6 +914,9 @@ async function main() {
   showCreaseSharpness();
   $('guard').value = String(state.maxFaces);
   $('version').textContent = `subsurf ${info.version} · WebAssembly in a Web Worker · WebGL2`;
+  gpuProbe.then(() => {
+    if (animator.gpu.available) $('version').textContent += ' · WebGPU';
+  });
   window.subsurfDemo = {
     camera,
     state,
@@ -725,6 +932,9 @@ async function main() {
       return { x: box.left + (screen[a] + screen[b]) / 2, y: box.top + (screen[a + 1] + screen[b + 1]) / 2 };
     },
     pickAt: (x, y) => cageEdgeAt(x, y),
+    get animator() {
+      return animator;
+    },
   };
 
   attachControls();

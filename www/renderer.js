@@ -1,6 +1,8 @@
 // WebGL2 drawing of the demo: the refined surface (smooth or flat shading, with a UV checker
 // texture when the mesh has UVs), its wireframe and the control cage. Only drawing happens here;
-// every position, normal, UV and edge comes from subsurf in the worker.
+// every position, normal, UV and edge comes from subsurf: from the worker, and while the page
+// animates from an Evaluator on the page (animation.js), whose frames overwrite the vertex
+// buffers in place (updateRefined, updateCage) while the index buffers stay.
 //
 // The surface and the wireframe have vertex buffers of their own: with UVs the surface is
 // subsurf's toDrawable mesh, whose vertices are split along UV seams (one index buffer for
@@ -27,7 +29,8 @@ void main() {
   gl_Position = viewProjection * vec4(position, 1.0);
 }`;
 
-// Smooth shading uses the vertex normals from subsurf; flat shading (and any vertex without a
+// Smooth shading uses the vertex normals from subsurf (subdivide's normals: the limit surface's
+// where the last scheme has limit masks, else from the faces); flat shading (and any vertex without a
 // normal) uses the triangle's own normal from screen-space derivatives.
 const SURFACE_FS = `#version 300 es
 precision highp float;
@@ -152,6 +155,23 @@ class MeshBuffers {
     this.hasUvs = uvs !== null;
   }
 
+  /**
+   * New positions (and normals) for the same vertices, written over the buffers in place: the
+   * animation's frames. The index groups stay.
+   */
+  updateVertices(positions, normals = null) {
+    const { gl } = this;
+    if (positions.length !== 3 * this.vertexCount) {
+      throw new Error(`updateVertices: ${positions.length / 3} vertices for buffers of ${this.vertexCount}`);
+    }
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.positions);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, positions);
+    if (normals) {
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.normals);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 0, normals);
+    }
+  }
+
   /** Sets the index buffer of group `name` (triangles, edge pairs, ...); null removes it. */
   setGroup(name, indices) {
     const { gl } = this;
@@ -225,6 +245,21 @@ export class Renderer {
     this.refined.setVertices(positions, null);
     this.refined.setGroup('edges', edges);
     this.refined.setGroup('sharp', sharpEdges);
+  }
+
+  /**
+   * A frame of the animation: new `positions` of the refined mesh (wireframe) and of the shaded
+   * surface (`surfacePositions`, `surfaceNormals`: the same arrays without UVs, else gathered
+   * through toDrawable's origins). Same vertices as the last setRefined; the topology stays.
+   */
+  updateRefined({ positions, surfacePositions, surfaceNormals }) {
+    this.refined.updateVertices(positions);
+    this.surfaceMesh.updateVertices(surfacePositions, surfaceNormals);
+  }
+
+  /** Moves the cage's vertices (the animation's deformed cage); edges and tags stay. */
+  updateCage(positions) {
+    this.cage.updateVertices(positions);
   }
 
   /** The control cage: its vertices as dots and its edges as lines; then its tags. */

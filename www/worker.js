@@ -5,25 +5,31 @@
 //
 // Messages in:
 //   { type: 'init', module }                      → { type: 'ready', version, schemes, boundaries, fvarModes, shapes }
-//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces, tags, fvarLinear }
+//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces, tags, fvarLinear, limit }
 //       input: { kind: 'shape', name } | { kind: 'obj', name, text } | { kind: 'mesh', mesh }
 //       schemes: one scheme name per level for every level the page could ask for (the page's
 //       per-level choices, then its main scheme); the job uses the first `level` of them.
 //       tags: subdivide's tag options (creases, corners, holes, creaseMethod, smoothTriangles),
 //       or null: an OBJ file's own tags (readObj's mesh.tags, its boundary included), or none.
 //       fvarLinear: how the mesh's UVs (its face-varying channel attributes.uv, if it has one)
-//       are refined, for the checker texture.
+//       are refined, for the checker texture. limit: ask for the limit surface (limit: true);
+//       normals (normals: true) are always asked for.
 //     → { type: 'plan', id, level, maxLevel, predicted, boundary, mesh? }
 //       (mesh: the input with its tags and UVs, when not sent in; boundary: the one used)
-//     → { type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, timings }
-//       surface: { positions, normals, uvs, triangles } to shade: with UVs toDrawable's mesh
-//       (vertices split along seams), else the result itself (uvs null); uvNotice: why the UVs
-//       were dropped (a refusal that only the UVs caused), or ''.
+//     → { type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, limitNotice,
+//         normals, limit, options, timings }
+//       surface: { positions, normals, uvs, triangles, origins } to shade: with UVs toDrawable's
+//       mesh (vertices split along seams; origins: the result vertex of each), else the result
+//       itself (uvs and origins null); uvNotice: why the UVs were dropped (a refusal that only
+//       the UVs caused), or ''; limitNotice: why limit: true was dropped, or ''. normals:
+//       'limit' (the limit surface's, from the last level's limit masks) or 'faces' (from the
+//       faces around each vertex); limit: whether the points are on the limit. options: the
+//       subdivide options used, for an Evaluator of the same surface (the page's animation).
 //     or { type: 'error', id, stage: 'read' | 'predict' | 'subdivide', message, fatal }
 //   { type: 'writeObj', id, mesh }                → { type: 'obj', id, blob } or an error
 import {
   initSync, subdivide, readObj, writeObj, shape, shapeNames, schemeNames, boundaryRules, fvarLinearModes,
-  predictCounts, vertexNormals, edgeList, toDrawable, version,
+  predictCounts, edgeList, toDrawable, version,
 } from './pkg/subsurf.js';
 
 let ready = false;
@@ -52,8 +58,8 @@ function warmUp() {
     for (const [name, scheme] of [['cube', 'catmull-clark'], ['icosahedron', 'loop']]) {
       const mesh = shape(name);
       predictCounts(mesh, { scheme, levels: 1 });
-      const out = subdivide(mesh, { scheme, levels: 1 });
-      surfaceOf(out, vertexNormals(out));
+      const out = subdivide(mesh, { scheme, levels: 1, normals: true });
+      surfaceOf(out);
       edgeList(out);
     }
   } catch {
@@ -111,51 +117,88 @@ function runJob(job) {
   self.postMessage(plan);
 
   const options = {
-    ...tags, scheme: job.schemes.slice(0, level), levels: level, boundary, maxFaces: job.maxFaces, fvarLinear: job.fvarLinear,
+    ...tags, scheme: job.schemes.slice(0, level), levels: level, boundary, maxFaces: job.maxFaces, fvarLinear: job.fvarLinear, normals: true,
   };
   const { attributes, ...plain } = mesh;
   const withUv = attributes?.uv ? { ...plain, attributes: { uv: attributes.uv } } : plain;
   const started = performance.now();
-  // Every scheme refines UVs; should a call with them be refused all the same, the surface is
-  // subdivided without them, and the page says why. Any other refusal is the second call's.
+  // Every scheme refines UVs, and the page only asks for the limit where the last scheme has
+  // one; should a call be refused all the same, it is made again without the limit, then
+  // without the UVs (and the limit again), and the page says what was dropped and why. Any
+  // other refusal is the last call's.
   let uvNotice = '';
+  let limitNotice = '';
+  let useUv = withUv !== plain;
+  let useLimit = Boolean(job.limit);
   let refined;
-  try {
-    refined = { value: subdivide(withUv, options) };
-  } catch (error) {
-    if (withUv === plain || error instanceof WebAssembly.RuntimeError || error instanceof RangeError) {
-      refined = stage(id, 'subdivide', () => { throw error; });
-    } else {
-      refined = stage(id, 'subdivide', () => subdivide(plain, options));
-      uvNotice = `UVs not shown: ${String(error?.message ?? error)}`;
+  for (;;) {
+    try {
+      refined = { value: subdivide(useUv ? withUv : plain, { ...options, limit: useLimit }) };
+      break;
+    } catch (error) {
+      const fatal = error instanceof WebAssembly.RuntimeError || error instanceof RangeError;
+      if (!fatal && useLimit) {
+        useLimit = false;
+        limitNotice = `Limit surface not shown: ${String(error?.message ?? error)}`;
+      } else if (!fatal && useUv) {
+        useUv = false;
+        uvNotice = `UVs not shown: ${String(error?.message ?? error)}`;
+        useLimit = Boolean(job.limit);
+        limitNotice = '';
+      } else {
+        refined = stage(id, 'subdivide', () => { throw error; });
+        break;
+      }
     }
   }
   if (!refined) return;
   const subdivided = performance.now();
   const result = refined.value;
   const display = stage(id, 'subdivide', () => ({
-    surface: surfaceOf(result, vertexNormals(result)),
+    surface: surfaceOf(result),
     edges: edgeList(result),
     cageEdges: edgeList(mesh),
   }));
   if (!display) return;
   const { surface, edges, cageEdges } = display.value;
   const timings = { subdivide: subdivided - started, display: performance.now() - subdivided };
-  const arrays = [result.positions, result.indices, result.faceSizes, result.triangles, edges, cageEdges];
-  if (surface.uvs) arrays.push(surface.positions, surface.normals, surface.uvs, surface.triangles);
-  else arrays.push(surface.normals);
+  const arrays = [result.positions, result.indices, result.faceSizes, result.triangles, result.normals, edges, cageEdges];
+  if (surface.uvs) arrays.push(surface.positions, surface.normals, surface.uvs, surface.triangles, surface.origins);
   for (const channel of Object.values(result.attributes ?? {})) arrays.push(channel.array, channel.indices);
   const transfer = [...new Set(arrays.filter(Boolean).map((array) => array.buffer))];
-  self.postMessage({ type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, timings }, transfer);
+  const used = { ...options, limit: useLimit };
+  const normals = normalSource(used, result);
+  self.postMessage({
+    type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, limitNotice, normals, limit: useLimit, options: used, timings,
+  }, transfer);
+}
+
+/**
+ * Where subdivide's normals come from (see SubdivideOptions.normals): the limit masks of the last
+ * level's scheme ('limit': Catmull-Clark and Loop, and Quad/Triangle on a mesh of quads or of
+ * triangles only, which stays so) or the faces ('faces': the other schemes, and no levels).
+ */
+function normalSource({ scheme, levels }, result) {
+  if (levels === 0) return 'faces';
+  const last = scheme[levels - 1];
+  if (last === 'catmull-clark' || last === 'loop') return 'limit';
+  if (last === 'quad-triangle') {
+    const sizes = result.faceSizes;
+    const uniform = sizes.length > 0 && (sizes[0] === 3 || sizes[0] === 4) && sizes.every((n) => n === sizes[0]);
+    return uniform ? 'limit' : 'faces';
+  }
+  return 'faces';
 }
 
 /**
  * What the page shades: with UVs, toDrawable's mesh, which splits the vertices along the seams
- * and carries the normals along as a channel; else the result with its normals.
+ * and carries the result's normals along as a channel (toDrawable takes channels only), with
+ * `origins` to map later frames' positions and normals onto it; else the result itself.
  */
-function surfaceOf(result, normals) {
+function surfaceOf(result) {
+  const { normals } = result;
   const uv = result.attributes?.uv;
-  if (!uv) return { positions: result.positions, normals, uvs: null, triangles: result.triangles };
+  if (!uv) return { positions: result.positions, normals, uvs: null, triangles: result.triangles, origins: null };
   const { positions, indices, faceSizes } = result;
   const drawable = toDrawable({ positions, indices, faceSizes, attributes: { uv, normal: { array: normals, itemSize: 3 } } });
   return {
@@ -163,6 +206,7 @@ function surfaceOf(result, normals) {
     normals: drawable.attributes.normal.array,
     uvs: drawable.attributes.uv.array,
     triangles: drawable.triangles,
+    origins: drawable.origins,
   };
 }
 

@@ -13,8 +13,14 @@
 // OBJ with vt) show the checker texture with their vertices split along the seams, that the
 // fvarLinear menu changes the picture, that the memory guard refuses a level with a message, that a big job still running is
 // superseded by a later change while the page stays responsive, that the OBJ download holds the
-// shown mesh, and that mouse and touch move the camera. Screenshots go to artifacts/. Exits
-// non-zero on failure.
+// shown mesh, and that mouse and touch move the camera; that the surface is shaded with the
+// library's limit normals and the limit surface checkbox gives the library's limit (disabled for
+// Doo-Sabin); that animate moves the surface every frame through one evaluator (frames equal
+// subdivide of the deformed cage, a positive CPU time per frame, the still picture back after)
+// while the GPU toggle says WebGPU is missing; and, in a second browser with WebGPU (SwiftShader),
+// that the GPU path draws a shaded, moving surface on the WebGPU canvas from the GPU evaluator's
+// buffers, equal to the CPU's frame, with its time per frame shown. Screenshots go to
+// artifacts/. Exits non-zero on failure.
 import assert from 'node:assert/strict';
 import { createServer } from 'node:http';
 import { copyFileSync, mkdirSync, readFileSync, existsSync, statSync, writeFileSync } from 'node:fs';
@@ -26,6 +32,14 @@ const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const artifacts = join(root, 'artifacts');
 const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
 const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
+// WebGPU through SwiftShader's Vulkan, as /work/shared/toolchain.md says, plus what drawing to a
+// WebGPU canvas needs headless: SwiftShader for Vulkan and for ANGLE (WebGL), so that the
+// canvas's images can be shared with the compositor. Without those three the GPU process loses
+// the device at the first canvas frame ("Could not find SharedImageBackingFactory ...
+// WebgpuSwapChainTexture"); compute alone works either way.
+const WEBGPU_ARGS = ['--no-sandbox', '--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan',
+  '--use-vulkan=swiftshader', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 const TYPES = {
   '.html': 'text/html; charset=utf-8',
   '.js': 'text/javascript; charset=utf-8',
@@ -663,6 +677,100 @@ async function run() {
     const reframed = await shot('reframed');
     assert.ok(Math.abs(reframed.mesh / framed.mesh - 1) < 0.25, 'framing restores the mesh size on screen');
 
+    // ---- limit normals: subdivide's normals shade the surface (the limit surface's after
+    // Catmull-Clark), and the limit surface checkbox moves the points onto it
+    await page.click('#frame');
+    const cubeMesh = library.shape('cube');
+    const near = (a, b, tolerance, what) => {
+      assert.equal(a.length, b.length, `${what}: lengths`);
+      const worst = a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
+      assert.ok(worst <= tolerance, `${what}: off by ${worst}`);
+    };
+    const shownNormals = () => page.evaluate(() => Array.from(window.subsurfDemo.display.result.normals));
+    await shows({ shape: 'cube', level: 2, normals: 'limit', limit: false }, 'cube with limit normals');
+    near(await shownNormals(), Array.from(library.subdivide(cubeMesh, { levels: 2, normals: true }).normals), 1e-6, 'the normals drawn are the library\'s');
+    assert.ok(!(await page.locator('#limit').isDisabled()), 'Catmull-Clark has a limit surface');
+    await page.check('#limit');
+    await shows({ shape: 'cube', level: 2, normals: 'limit', limit: true }, 'the limit surface');
+    const atLimit = library.subdivide(cubeMesh, { levels: 2, limit: true, normals: true });
+    near(await shownPositions(), Array.from(atLimit.positions), 1e-6, 'limit positions');
+    near(await shownNormals(), Array.from(atLimit.normals), 1e-6, 'limit normals');
+    // Doo-Sabin has no limit masks: the checkbox is disabled with a note, the normals come from the faces.
+    await page.selectOption('#scheme', 'doo-sabin');
+    await shows({ scheme: 'doo-sabin,doo-sabin', normals: 'faces', limit: false }, 'Doo-Sabin: normals from the faces');
+    assert.ok(await page.locator('#limit').isDisabled(), 'no limit surface for Doo-Sabin');
+    assert.match(await page.locator('#limit-hint').textContent(), /Doo-Sabin has no limit masks/);
+    await page.selectOption('#scheme', 'catmull-clark');
+    await shows({ scheme: 'catmull-clark,catmull-clark', normals: 'limit', limit: true }, 'back to Catmull-Clark at the limit');
+    await page.uncheck('#limit');
+    await shows({ level: 2, normals: 'limit', limit: false }, 'limit surface off');
+    console.log(`  limit normals: ${await page.locator('#time-detail').textContent()}`);
+
+    // ---- animate: the cage is deformed every frame, one evaluator moves the surface
+    await afterFrames();
+    const still = await shot('still-before-animation');
+    assert.equal((await dataset()).animate, 'false');
+    assert.equal((await dataset()).gpu, 'unavailable', 'this browser has no WebGPU adapter (--disable-gpu)');
+    assert.ok(await page.locator('#gpu').isDisabled(), 'the GPU toggle is disabled without WebGPU');
+    const gpuNote = await page.locator('#gpu-note').textContent();
+    assert.match(gpuNote, /^WebGPU not available: /, 'the page says why the GPU path is off');
+    console.log(`  GPU toggle: "${gpuNote}"`);
+    const framesAtLeast = (n) => page.waitForFunction((want) => Number(document.documentElement.dataset.frames ?? 0) >= want, n, { timeout: 30_000 });
+    const frames = async () => Number((await dataset()).frames ?? 0);
+    await page.check('#animate');
+    await framesAtLeast((await frames()) + 10);
+    assert.equal((await dataset()).animate, 'true');
+    const moving = [await shot('animate-1')];
+    await framesAtLeast((await frames()) + 5);
+    moving.push(await shot('animate-2'));
+    assert.notEqual(moving[0].hash, moving[1].hash, 'the surface moves from frame to frame');
+    assert.notEqual(moving[1].hash, still.hash, 'the animated picture is not the still one');
+    for (const picture of moving) {
+      assert.ok(picture.mesh / picture.total > 0.05, 'the animated mesh stays in view');
+      assert.ok(picture.shades >= 4, 'the animated mesh is shaded');
+    }
+    await page.waitForFunction(() => Number(document.documentElement.dataset.cpuMs) > 0, null, { timeout: 30_000 });
+    const cpuMs = Number((await dataset()).cpuMs);
+    assert.ok(Number.isFinite(cpuMs) && cpuMs > 0, `data-cpu-ms is a positive number (${cpuMs})`);
+    assert.match(await page.locator('#frame-times').textContent(), /^CPU: \d+\.\d\d ms\/frame/);
+    assert.ok(await page.locator('#frame-times').isVisible(), 'the frame time is on screen');
+    // A frame is subdivide's surface of the deformed cage, in the shown result's options.
+    const frameOf = () => page.evaluate(() => {
+      const { prepared } = window.subsurfDemo.animator;
+      return {
+        cage: Array.from(prepared.deformed), positions: Array.from(prepared.frame.positions), normals: Array.from(prepared.frame.normals),
+        job: prepared.display.job, vertices: prepared.evaluator.numVertices,
+      };
+    });
+    let frame = await frameOf();
+    assert.equal(String(frame.job), (await dataset()).job, 'the evaluator is that of the result shown');
+    const deformedCube = { positions: Float32Array.from(frame.cage), indices: cubeMesh.indices, faceSizes: cubeMesh.faceSizes };
+    assert.notDeepEqual(frame.cage, Array.from(cubeMesh.positions), 'the cage is deformed');
+    const expectedFrame = library.subdivide(deformedCube, { levels: 2, normals: true });
+    near(frame.positions, Array.from(expectedFrame.positions), 1e-5, 'animated positions');
+    near(frame.normals, Array.from(expectedFrame.normals), 1e-4, 'animated normals');
+    // A new level while animating builds a new evaluator for it.
+    await setLevel(3);
+    await shows({ level: 3, ...cubeCatmullClark(3) }, 'level 3 while animating');
+    await framesAtLeast((await frames()) + 5);
+    frame = await frameOf();
+    assert.equal(String(frame.job), (await dataset()).job, 'the evaluator follows the new result');
+    assert.equal(frame.vertices, cubeCatmullClark(3).vertices);
+    report.cpuMs = Number((await dataset()).cpuMs);
+    await setLevel(2);
+    await shows({ level: 2, ...cubeCatmullClark(2) }, 'level 2 while animating');
+    await framesAtLeast((await frames()) + 60);
+    report.cpuMsLevel2 = Number((await dataset()).cpuMs);
+    console.log(`  animate (CPU): ${await frames()} frames so far, ${await page.locator('#frame-times').textContent()} (cube level 2)`);
+    // Off again: the still result is back where the frames were.
+    await page.uncheck('#animate');
+    await afterFrames();
+    const frozen = await frames();
+    assert.equal((await dataset()).animate, 'false');
+    assert.equal((await shot('still-after-animation')).hash, still.hash, 'the still picture is back');
+    await afterFrames();
+    assert.equal(await frames(), frozen, 'no frames while not animating');
+
     // ---- the page as a visitor first sees it, for the README
     const fresh = await context.newPage();
     fresh.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
@@ -675,6 +783,8 @@ async function run() {
       console.log('  wrote docs/demo.png');
     }
     report.subdivideTimes = subdivideTimes;
+
+    await checkWebGpu(url, problems, report);
   } finally {
     await browser.close();
     server?.close();
@@ -686,6 +796,98 @@ async function run() {
       `largest ${largest.faces.toLocaleString('en-US')} faces in ${largest.ms.toFixed(1)} ms`);
   }
   for (const problem of problems) fail(problem);
+}
+
+/**
+ * The animation's GPU path, in a second browser with a WebGPU adapter (SwiftShader's Vulkan):
+ * the GPU toggle is offered, the GPU evaluator's buffers are drawn on the WebGPU canvas (a
+ * shaded surface that moves), its output equals the CPU evaluator's, and the GPU time is
+ * shown, from timestamp queries and (with ?gpu-timing=work-done) from onSubmittedWorkDone.
+ */
+async function checkWebGpu(url, problems, report) {
+  const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true, args: WEBGPU_ARGS });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (error) => problems.push(`WebGPU page error: ${error.message}`));
+    page.on('console', (message) => message.type() === 'error' && problems.push(`WebGPU console error: ${message.text()}`));
+    const dataset = () => page.evaluate(() => ({ ...document.documentElement.dataset }));
+    const frames = async () => Number((await dataset()).frames ?? 0);
+    const framesAtLeast = (n) => page.waitForFunction((want) => Number(document.documentElement.dataset.frames ?? 0) >= want, n, { timeout: 30_000 });
+    const gpuShot = async (name) => {
+      const png = await page.locator('#view-gpu').screenshot();
+      writeFileSync(join(artifacts, `demo-${name}.png`), png);
+      return analyze(page, png);
+    };
+    const start = async (query) => {
+      await page.goto(url + query);
+      await page.waitForFunction(() => window.subsurfReady === true && document.documentElement.dataset.gpu, null, { timeout: 60_000 });
+      const data = await dataset();
+      assert.equal(data.gpu, 'off', `WebGPU is available (${await page.locator('#gpu-note').textContent()})`);
+      assert.ok(!(await page.locator('#gpu').isDisabled()), 'the GPU toggle is enabled');
+      assert.equal(data.normals, 'limit');
+      await page.check('#animate');
+      await page.check('#gpu');
+      await page.waitForFunction(() => document.documentElement.dataset.gpu === 'on', null, { timeout: 30_000 });
+      await framesAtLeast((await frames()) + 10);
+      assert.ok(await page.locator('#view-gpu').isVisible(), 'the WebGPU canvas is shown');
+      await page.waitForFunction(() => document.documentElement.dataset.gpuMs !== undefined, null, { timeout: 30_000 });
+    };
+
+    await start('');
+    assert.equal((await dataset()).gpuTiming, 'timestamp-query', 'SwiftShader has timestamp queries');
+    const pictures = [await gpuShot('webgpu-1')];
+    await framesAtLeast((await frames()) + 5);
+    pictures.push(await gpuShot('webgpu-2'));
+    for (const picture of pictures) {
+      const share = picture.mesh / picture.total;
+      assert.ok(share > 0.05 && share < 0.9, `the WebGPU canvas shows the mesh (${(100 * share).toFixed(1)}% of it)`);
+      assert.ok(picture.shades >= 4, `the WebGPU surface is shaded (${picture.shades} shades)`);
+    }
+    assert.notEqual(pictures[0].hash, pictures[1].hash, 'the WebGPU surface moves');
+    // The GPU evaluator's output for a deformed cage equals the CPU evaluator's (read back here
+    // for the test only; the page draws from the buffers).
+    const agreement = await page.evaluate(async () => {
+      const animator = window.subsurfDemo.animator;
+      // A cage of its own (the frame's, stretched and moved), so that the buffers cannot hold it already.
+      const cage = animator.prepared.deformed.map((x, i) => 1.3 * x + (i % 3 === 1 ? 0.25 : 0));
+      const cpu = animator.prepared.evaluator.evaluate(cage);
+      const gpu = animator.gpuState.evaluator;
+      gpu.evaluate(cage);
+      const back = await gpu.readBack(); // submitted before this task yields: no frame comes between
+      const worst = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
+      return {
+        vertices: gpu.numVertices, hasNormals: gpu.hasNormals, positions: worst(cpu.positions, back.positions), normals: worst(cpu.normals, back.normals),
+      };
+    });
+    assert.equal(agreement.vertices, 98);
+    assert.ok(agreement.hasNormals, 'the GPU evaluator computes the limit normals');
+    assert.ok(agreement.positions < 1e-5 && agreement.normals < 1e-4, `GPU and CPU frames agree (${JSON.stringify(agreement)})`);
+    const gpuMs = Number((await dataset()).gpuMs);
+    assert.ok(Number.isFinite(gpuMs) && gpuMs >= 0, `data-gpu-ms is a number (${gpuMs})`);
+    assert.match(await page.locator('#frame-times').textContent(), /GPU: \d+\.\d\d ms\/frame/);
+    await framesAtLeast((await frames()) + 60);
+    report.gpuMs = Number((await dataset()).gpuMs);
+    console.log(`  animate (WebGPU, SwiftShader): ${await frames()} frames so far, ${await page.locator('#frame-times').textContent()} ` +
+      `(cube level 2; GPU time from timestamp queries); GPU vs CPU frame within ${agreement.positions.toExponential(1)}`);
+
+    // The GPU toggle off: the CPU path draws the animation on the WebGL canvas again.
+    await page.uncheck('#gpu');
+    await page.waitForFunction(() => document.documentElement.dataset.gpu === 'off');
+    const cpuFrom = Number((await dataset()).frames);
+    await framesAtLeast(cpuFrom + 10);
+    assert.ok(await page.locator('#view-gpu').isHidden(), 'the WebGPU canvas is hidden on the CPU path');
+
+    // Without timestamp queries the GPU time comes from onSubmittedWorkDone.
+    await start('?gpu-timing=work-done');
+    assert.equal((await dataset()).gpuTiming, 'submitted-work-done');
+    await page.waitForFunction(() => Number(document.documentElement.dataset.gpuMs) > 0, null, { timeout: 30_000 });
+    await framesAtLeast((await frames()) + 60);
+    report.gpuWorkDoneMs = Number((await dataset()).gpuMs);
+    console.log(`  animate (WebGPU, onSubmittedWorkDone timing): ${await page.locator('#frame-times').textContent()}`);
+    assert.ok((await gpuShot('webgpu-work-done')).shades >= 4, 'the WebGPU surface is drawn');
+  } finally {
+    await browser.close();
+  }
 }
 
 function median(values) {
