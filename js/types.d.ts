@@ -87,13 +87,14 @@ export interface SubdivideOptions {
   /**
    * Move the last level's points and every attribute (face-varying ones too) to the limit
    * surface, as OpenSubdiv's `Limit` and `LimitFaceVarying` do. For a last level of
-   * 'catmull-clark', 'loop' and 'quad-triangle' on quads or on triangles; 'bilinear' and
-   * 'midpoint' points are on their limit already and stay; any other scheme throws. Default false.
+   * 'catmull-clark', 'loop' and 'quad-triangle' (whose points where quads meet triangles stay);
+   * 'bilinear' and 'midpoint' points are on their limit already and stay; 'doo-sabin' and
+   * 'sqrt3' throw. Default false.
    */
   limit?: boolean;
   /**
    * Add `normals` to the result: one unit normal per vertex, outward as the faces are wound.
-   * After 'catmull-clark', 'loop' and 'quad-triangle' on quads or triangles, the limit
+   * After 'catmull-clark', 'loop' and 'quad-triangle', the limit
    * surface's normal (the cross product of its two tangents; a crease or corner gets one
    * side's); after the other schemes, the normalised sum of the faces' area vectors around the
    * vertex. Without `limit`, the points stay where the level put them. Default false.

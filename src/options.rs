@@ -110,12 +110,13 @@ pub struct Options {
     pub fvar_linear: FVarLinear,
     /// Move the last level's points, vertex-varying and face-varying values to the limit
     /// surface (OpenSubdiv's `PrimvarRefiner::Limit` and `LimitFaceVarying`). Defined when the
-    /// last level is Catmull-Clark, Loop or Quad/Triangle on quads or on triangles; bilinear
-    /// and midpoint points are already on their limit and stay.
+    /// last level is Catmull-Clark, Loop or Quad/Triangle (whose points where quads meet
+    /// triangles stay, see [`crate::rules::limit::LimitRules::scheme`]); bilinear and midpoint
+    /// points are already on their limit and stay.
     pub limit: bool,
-    /// Give unit vertex normals: the limit normals after Catmull-Clark, Loop and
-    /// Quad/Triangle on quads or triangles (the points stay unless `limit`), normals from the
-    /// faces after any other scheme (see [`crate::refined::Refined::normals`]).
+    /// Give unit vertex normals: the limit normals after Catmull-Clark, Loop and Quad/Triangle
+    /// (the points stay unless `limit`), normals from the faces after any other scheme (see
+    /// [`crate::refined::Refined::normals`]).
     pub normals: bool,
 }
 

@@ -451,12 +451,14 @@ fn refine_levels<'a, V: Primvar>(
 }
 
 /// The scheme whose limit masks apply after a level of `scheme` on `mesh` (Quad/Triangle is
-/// Catmull-Clark on quads and Loop on triangles), if any.
+/// Catmull-Clark on quads and Loop on triangles, and chooses per vertex on a mix), if any.
 fn limit_scheme(scheme: Scheme, mesh: &HalfEdgeMesh) -> Option<Scheme> {
     match scheme {
         Scheme::CatmullClark | Scheme::Loop => Some(scheme),
         Scheme::QuadTriangle if mesh.cell_size == 4 => Some(Scheme::CatmullClark),
         Scheme::QuadTriangle if mesh.cell_size == 3 => Some(Scheme::Loop),
+        // Quads and triangles: each vertex by its faces (see `LimitRules::scheme`).
+        Scheme::QuadTriangle => Some(Scheme::QuadTriangle),
         _ => None,
     }
 }
@@ -514,13 +516,6 @@ fn run_levels<'a, V: Primvar>(
         };
         let scheme = on_triangles(scheme);
         let masks = if masks_wanted { limit_scheme(scheme, &mesh) } else { None };
-        if options.limit && level + 1 == levels && masks.is_none() && scheme == Scheme::QuadTriangle
-        {
-            return Err(Error::Unsupported(format!(
-                "level {}: limit: true is not available for quad-triangle on a mesh with both quads and triangles (there are no limit masks where they meet); use normals: true without limit for normals from the faces",
-                level + 1
-            )));
-        }
         last_scheme = masks.unwrap_or(scheme);
         let split_first = match (first_faces.take(), scheme) {
             (Some(f), Scheme::Loop | Scheme::Midpoint) if mesh.cell_size == 3 => {

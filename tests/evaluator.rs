@@ -144,6 +144,12 @@ fn tags_holes_and_channels_follow() {
             check(&obj.mesh, &attributes, &options, &obj.tags, &format!("{name} limit {limit}"));
         }
     }
+    // Quad/Triangle where quads meet triangles (the corner rule there).
+    let prism = subsurf::shapes::prism(3);
+    for limit in [false, true] {
+        let options = options(Scheme::QuadTriangle, 2, limit, true);
+        check(&prism, &[], &options, &Tags::default(), &format!("quad-triangle prism {limit}"));
+    }
     let mesh = grid_with_hole(4, 4, 1..3, 1..2);
     let colour = Attribute::vertex(
         "colour",

@@ -251,10 +251,6 @@ fn what_has_no_limit_is_an_error() {
     assert!(refuse(Options::new(Scheme::Sqrt3, 1), &shapes::icosahedron()).contains("sqrt3"));
     let average = Options::new(Scheme::CatmullClark, 1).with_boundary(Boundary::Average);
     assert!(refuse(average, &cube).contains("average"));
-    // Quad/Triangle where quads meet triangles (a prism: quad sides, triangle caps).
-    assert!(
-        refuse(Options::new(Scheme::QuadTriangle, 1), &shapes::prism(3)).contains("quad-triangle")
-    );
     // Quad/Triangle on quads is Catmull-Clark, limit included.
     let quad_triangle = subdivide_limit(&cube, &Options::new(Scheme::QuadTriangle, 2), &none);
     let catmull_clark = limit(&cube, Scheme::CatmullClark, 2, &none);
@@ -330,4 +326,53 @@ fn the_byte_guard_counts_tangents_and_normals() {
     assert!(matches!(subdivide_limit(&mesh, &options, &Tags::default()), Err(Error::TooLarge(_))));
     options.max_bytes = prediction.bytes() + 36 * prediction.vertices;
     assert!(subdivide_limit(&mesh, &options, &Tags::default()).is_ok());
+}
+
+/// Quad/Triangle where quads meet triangles (a prism: quad sides, triangle caps): a vertex
+/// whose faces are all quads or all triangles takes Catmull-Clark's or Loop's masks, one where
+/// they meet stays where the level put it (the corner rule); normals are unit and outward.
+#[test]
+fn quad_triangle_takes_masks_by_the_faces_around_each_vertex() {
+    let prism = shapes::prism(3);
+    let options = Options::new(Scheme::QuadTriangle, 2);
+    let result = subdivide_limit(&prism, &options, &Tags::default()).unwrap();
+    let plain = subsurf::subdivide(&prism, &options).unwrap();
+    assert_eq!(result.positions().len(), plain.positions.len());
+    // Which vertices have quads and triangles around them.
+    let n = plain.num_vertices();
+    let (mut quads, mut triangles) = (vec![false; n], vec![false; n]);
+    let mut start = 0;
+    for &size in &plain.face_sizes {
+        for &v in &plain.indices[start..start + size as usize] {
+            if size == 4 {
+                quads[v as usize] = true
+            } else {
+                triangles[v as usize] = true
+            }
+        }
+        start += size as usize;
+    }
+    let centroid: [f64; 3] = (0..3)
+        .map(|k| {
+            plain.positions.iter().skip(k).step_by(3).map(|&x| x as f64).sum::<f64>() / n as f64
+        })
+        .collect::<Vec<_>>()
+        .try_into()
+        .unwrap();
+    let (mut mixed, mut moved) = (0, 0);
+    for v in 0..n {
+        let (a, b) = (triple(result.positions(), v), triple(&plain.positions, v));
+        if quads[v] && triangles[v] {
+            mixed += 1;
+            assert_eq!(a, b, "vertex {v}, where quads meet triangles, stays");
+        } else if (0..3).any(|k| (a[k] - b[k]).abs() > 1e-6) {
+            moved += 1;
+        }
+        let normal = triple(result.normals().unwrap(), v);
+        let length = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((length - 1.0).abs() < 1e-5, "vertex {v}: {normal:?}");
+        let outward: f64 = (0..3).map(|k| normal[k] * (a[k] - centroid[k])).sum();
+        assert!(outward > 0.0, "vertex {v}: {normal:?} points inward");
+    }
+    assert!(mixed > 0 && moved > 0, "{mixed} mixed vertices, {moved} moved");
 }

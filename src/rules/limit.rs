@@ -86,13 +86,21 @@ pub struct Neighbourhood {
     /// opposite vertex of a quad).
     pub faces: Vec<u32>,
     pub rule: LimitRule,
+    /// Catmull-Clark's masks (else Loop's): the scheme's, or for Quad/Triangle the vertex's
+    /// faces' (see [`LimitRules::scheme`]).
+    pub catmull_clark: bool,
 }
 
 /// The limit masks of Catmull-Clark or Loop on one level (see the module docs): `tags` is the
 /// level's sharpness when the level follows tags (the crease rules), `None` on the plain path.
 #[derive(Clone, Copy, Debug)]
 pub struct LimitRules<'a> {
-    /// [`Scheme::CatmullClark`] or [`Scheme::Loop`]; any other scheme takes Loop's masks.
+    /// [`Scheme::CatmullClark`] or [`Scheme::Loop`]; [`Scheme::QuadTriangle`] on a level of quads
+    /// and triangles takes Catmull-Clark's masks at a vertex whose faces are all quads, Loop's
+    /// where they are all triangles (there the scheme is that scheme, and the neighbourhood
+    /// the masks read evolves as under it), and where quads meet triangles, for want of
+    /// published masks, the corner rule (the point stays; the normal is its first face
+    /// corner's); any other scheme takes Loop's masks.
     pub scheme: Scheme,
     pub boundary: Boundary,
     pub tags: Option<&'a LevelTags>,
@@ -180,6 +188,16 @@ impl LimitRules<'_> {
             corner |= open && out.len() == 1 && self.boundary == Boundary::EdgeAndCorner;
         }
         corner |= self.tags.is_some_and(|t| t.vertex_sharpness(vertex) > 0.0);
+        hood.catmull_clark = match self.scheme {
+            Scheme::CatmullClark => true,
+            Scheme::QuadTriangle => {
+                let size = |h: &u32| mesh.cell_range(mesh.cell_of(*h) as usize).len();
+                let quads = out.iter().filter(|h| size(h) == 4).count();
+                corner |= quads != 0 && quads != out.len();
+                quads == out.len()
+            }
+            _ => false,
+        };
         hood.rule = if corner || sharp_count > 2 {
             LimitRule::Corner
         } else if sharp_count == 2 {
@@ -204,10 +222,10 @@ impl LimitRules<'_> {
             }
             LimitRule::Smooth => {
                 let n = hood.faces.len();
-                let (vertex, edge, face) = match self.scheme {
-                    Scheme::CatmullClark if n == 2 => (1.0, 0.0, 0.0),
-                    Scheme::CatmullClark if n == 4 => (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0),
-                    Scheme::CatmullClark => {
+                let (vertex, edge, face) = match hood.catmull_clark {
+                    true if n == 2 => (1.0, 0.0, 0.0),
+                    true if n == 4 => (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0),
+                    true => {
                         let n = n as f64;
                         let f = 1.0 / (n * (n + 5.0));
                         (1.0 - n * 5.0 * f, 4.0 * f, f)
@@ -250,7 +268,7 @@ impl LimitRules<'_> {
         second: &mut impl Weights,
     ) {
         let v = hood.vertex;
-        let loop_scheme = self.scheme != Scheme::CatmullClark;
+        let loop_scheme = !hood.catmull_clark;
         let edge = |i: usize| hood.edges.get(i).copied();
         let face = |i: usize| hood.faces.get(i).copied();
         let add = |w: &mut dyn FnMut(u32, f64), at: Option<u32>, weight: f64| {
