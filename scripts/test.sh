@@ -5,10 +5,11 @@
 #
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, native vs wasm agreement on seeded random meshes (the fixture comes from
-# the native tests), the demo page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's
-# compute shader against a JS reference in headless Chromium on SwiftShader (e2e-webgpu), and a short
-# fuzz run of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
+# the built package, subsurf/three with real three.js in Node (tests/js/three.mjs), native vs
+# wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
+# page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
+# a JS reference in headless Chromium on SwiftShader (e2e-webgpu), and a short fuzz run of every
+# cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -98,6 +99,7 @@ else
 fi
 if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
+  run three node tests/js/three.mjs
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
@@ -107,6 +109,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run e2e-webgpu node tests/e2e/webgpu.mjs
 else
   skip pkg-smoke "package build failed"
+  skip three "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
