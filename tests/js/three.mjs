@@ -518,6 +518,12 @@ await check('groups: every refined face in its parent face\'s group (BoxGeometry
     assert.equal(out.groups[0].start, 0);
     for (let g = 1; g < 6; g++) assert.equal(out.groups[g].start, out.groups[g - 1].start + out.groups[g - 1].count);
     assert.equal(out.groups[5].start + out.groups[5].count, out.index.count);
+    // Groups that leave faces out: those come last, in no group (three draws them not, as before).
+    const partial = box.clone();
+    partial.groups.pop();
+    const cut = subdivideGeometry(partial, options);
+    assert.deepEqual(cut.groups.map((g) => [g.start, g.count, g.materialIndex]), out.groups.slice(0, 5).map((g) => [g.start, g.count, g.materialIndex]));
+    assert.equal(cut.index.count, out.index.count);
     // BoxGeometry's groups are +x, -x, +y, -y, +z, -z; a child's centroid lies on its parent's side.
     const p = out.getAttribute('position'), index = out.index.array;
     for (const [g, { start, count }] of out.groups.entries()) {
