@@ -77,7 +77,8 @@ export function subdivideGeometry(geometry, options = {}) {
   if (cornerCount === 0) throw new Error('subdivideGeometry: the geometry has no triangles');
   let corner; // original vertex of every triangle corner
   if (index) {
-    corner = index.array instanceof Uint32Array ? index.array : Uint32Array.from(index.array.subarray(0, cornerCount));
+    const array = index.array.subarray(0, cornerCount);
+    corner = array instanceof Uint32Array ? array : Uint32Array.from(array);
     for (let c = 0; c < cornerCount; c++) {
       if (corner[c] >= numInput) {
         throw new Error(`subdivideGeometry: index[${c}] is ${corner[c]}, but the geometry has only ${numInput} vertices`);
@@ -127,9 +128,14 @@ export function subdivideGeometry(geometry, options = {}) {
 
   // ---- channels: each attribute vertex-varying, or face-varying where welded copies differ
   const channels = []; // { name, values, itemSize, fv: Int32Array | null, out: 'attribute' | 'morph', ... }
+  const instanced = [];
   for (const name of Object.keys(geometry.attributes)) {
     if (SPECIAL.has(name)) continue;
     const attr = geometry.attributes[name];
+    if (attr && attr.isInstancedBufferAttribute) {
+      instanced.push(name); // per instance, not per vertex: copied as it is
+      continue;
+    }
     checkCount(attr, numInput, `attribute '${name}'`);
     channels.push(classify(readFloats(attr, name), attr.itemSize, copies, { kind: 'attribute', name }, UV_NAMES.has(name)));
   }
@@ -156,7 +162,7 @@ export function subdivideGeometry(geometry, options = {}) {
   let sharp = null; // Uint8Array per edge: 1 for a crease we add, 2 for a user crease (kept as an edge)
   const ourCreases = [];
   if (needEdges) {
-    edges = buildEdges(triW, numWelded);
+    edges = buildEdges(triW);
     sharp = new Uint8Array(edges.count);
     const normals = own.creaseAngle !== undefined || own.quads ? triangleNormals(triW, weldedPositions) : null;
     if (own.creaseAngle !== undefined) {
@@ -310,6 +316,12 @@ export function subdivideGeometry(geometry, options = {}) {
 
   const result = new BufferGeometry();
   result.name = geometry.name;
+  try {
+    result.userData = JSON.parse(JSON.stringify(geometry.userData)); // as BufferGeometry.copy does
+  } catch {
+    result.userData = { ...geometry.userData };
+  }
+  for (const name of instanced) result.setAttribute(name, geometry.attributes[name].clone());
   result.setAttribute('position', new BufferAttribute(draw.positions, 3));
   if (own.normals !== false) result.setAttribute('normal', new BufferAttribute(normalsFor(out.positions, out.normals), 3));
   const morphOut = {};
@@ -747,6 +759,7 @@ function gatherWelded(values, itemSize, copies) {
   const { start, list, numWelded } = copies;
   const out = new Float32Array(numWelded * itemSize);
   for (let w = 0; w < numWelded; w++) {
+    if (start[w] === start[w + 1]) continue; // only in triangles dropped as degenerate: unused
     const v = list[start[w]];
     for (let k = 0; k < itemSize; k++) out[w * itemSize + k] = values[v * itemSize + k];
   }
@@ -810,6 +823,7 @@ function readSkin(geometry, numInput, copies) {
   const slotOf = new Map();
   const bones = [];
   for (let w = 0; w < numWelded; w++) {
+    if (start[w] === start[w + 1]) continue;
     const v = list[start[w]];
     for (let k = 0; k < m; k++) {
       if (W[v * m + k] > 0 && !slotOf.has(I[v * m + k])) {
@@ -825,6 +839,7 @@ function readSkin(geometry, numInput, copies) {
     chunks.push({ array: new Float32Array(numWelded * itemSize), itemSize });
   }
   for (let w = 0; w < numWelded; w++) {
+    if (start[w] === start[w + 1]) continue;
     const v = list[start[w]];
     for (let k = 0; k < m; k++) {
       const weight = W[v * m + k];
@@ -888,7 +903,7 @@ const next3 = (h) => (h % 3 === 2 ? h - 2 : h + 1);
  * The edges of the kept triangles: for edge e, its vertices a < b, how many half-edges use it,
  * and the first two (h = 3 * triangle + corner, from corner to the next).
  */
-function buildEdges(triW, numWelded) {
+function buildEdges(triW) {
   const H = triW.length;
   const size = tableSize(H);
   const mask = size - 1;
@@ -920,7 +935,6 @@ function buildEdges(triW, numWelded) {
     uses[e]++;
     edgeOf[h] = e;
   }
-  void numWelded;
   return {
     count, a, b, uses, h0, h1, edgeOf,
     /** Whether an edge's two half-edges run opposite ways (a consistently wound manifold edge). */

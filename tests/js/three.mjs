@@ -370,6 +370,31 @@ await check("tangent is dropped; normals 'faces' and false", () => {
   assert.equal(subdivideGeometry(geometry, { levels: 1, normals: false }).getAttribute('normal'), undefined);
 });
 
+await check('degenerate triangles are dropped; instanced attributes and userData are copied', () => {
+  const box = new THREE.BoxGeometry(2, 2, 2);
+  const n = box.getAttribute('position').count;
+  const grown = new THREE.BufferGeometry();
+  for (const name of ['position', 'normal', 'uv']) {
+    const a = box.getAttribute(name);
+    const array = new Float32Array((n + 3) * a.itemSize);
+    array.set(a.array);
+    array.fill(0.5, n * a.itemSize); // three more vertices, two of them at one position
+    if (name === 'position') array.set([3, 3, 3, 3, 3, 3, 4, 4, 4], 3 * n);
+    grown.setAttribute(name, new THREE.BufferAttribute(array, a.itemSize));
+  }
+  const skinWeight = new Float32Array(4 * (n + 3)).fill(0.25);
+  grown.setAttribute('skinIndex', new THREE.Uint16BufferAttribute(new Uint16Array(4 * (n + 3)).fill(1), 4));
+  grown.setAttribute('skinWeight', new THREE.BufferAttribute(skinWeight, 4));
+  grown.setIndex([...box.index.array, n, n + 1, n + 2]);
+  grown.setAttribute('offset', new THREE.InstancedBufferAttribute(new Float32Array([0, 0, 0, 1, 1, 1]), 3));
+  grown.userData = { source: 'test' };
+  const out = subdivideGeometry(grown, { levels: 1 });
+  assert.equal(out.index.count, subdivideGeometry(box, { levels: 1 }).index.count);
+  for (const a of Object.values(out.attributes)) assert.ok(a.array.every(Number.isFinite));
+  assert.equal(out.getAttribute('offset').count, 2);
+  assert.deepEqual(out.userData, { source: 'test' });
+});
+
 // ---- creases
 await check('BoxGeometry: creaseAngle and sharpNormalSplits keep the cube, with one normal per side', () => {
   const box = new THREE.BoxGeometry(2, 2, 2);
