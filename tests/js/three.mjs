@@ -2,8 +2,9 @@
 // (run scripts/build-pkg.sh first):   node tests/js/three.mjs
 // Installs pkg/'s `files` into a temporary node_modules/subsurf beside the pinned three (a
 // devDependency, symlinked), imports 'subsurf/three' as a Node user would (its "node" export
-// condition loads the wasm), and checks: glTF-style seam-split shapes against `subdivide` on the
-// original indexed meshes (positions, UVs, normals; position-keyed), quads recovered from
+// condition loads the wasm), and checks: glTF-style seam-split shapes (as BufferGeometry, and
+// written as .glb files read back by three's GLTFLoader) against `subdivide` on the original
+// indexed meshes (positions, UVs, normals; position-keyed), quads recovered from
 // triangulated quad meshes, watertightness, non-indexed and interleaved input, welding by
 // distance, skin weights, morph targets, groups, creases, errors, input left unchanged, and
 // the TypeScript declarations (tsc on tests/js/three_types_check.ts with @types/three).
@@ -49,9 +50,10 @@ symlinkSync(join(root, 'node_modules', '@types', 'three'), join(scratch, 'node_m
 writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
 writeFileSync(
   join(scratch, 'consumer.mjs'),
-  "export * as THREE from 'three';\nexport { subdivideGeometry } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n",
+  "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
+    "export { subdivideGeometry } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n",
 );
-const { THREE, subdivideGeometry, subsurf } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+const { THREE, GLTFLoader, subdivideGeometry, subsurf } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
 const { shape, subdivide, toDrawable } = subsurf;
 const threeVersion = JSON.parse(readFileSync(join(threeDir, 'package.json'), 'utf8')).version;
 
@@ -234,7 +236,69 @@ function assertUnchanged(geometry, before) {
   now.live.forEach((a, i) => assert.deepEqual(a, before.arrays[i], `array ${i} unchanged`));
 }
 
+/** A binary glTF (.glb) of one triangle primitive: POSITION, TEXCOORD_0 and 32-bit indices. */
+function glb(positions, uvs, indices) {
+  const views = [positions, uvs, indices];
+  const bin = new Uint8Array(views.reduce((n, a) => n + a.byteLength, 0));
+  let offset = 0;
+  const bufferViews = views.map((a, i) => {
+    bin.set(new Uint8Array(a.buffer, a.byteOffset, a.byteLength), offset);
+    offset += a.byteLength;
+    return { buffer: 0, byteOffset: offset - a.byteLength, byteLength: a.byteLength, target: i < 2 ? 34962 : 34963 };
+  });
+  const min = [0, 1, 2].map((k) => Math.min(...positions.filter((_, i) => i % 3 === k)));
+  const max = [0, 1, 2].map((k) => Math.max(...positions.filter((_, i) => i % 3 === k)));
+  const json = {
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2 }] }],
+    buffers: [{ byteLength: bin.byteLength }],
+    bufferViews,
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min, max },
+      { bufferView: 1, componentType: 5126, count: uvs.length / 2, type: 'VEC2' },
+      { bufferView: 2, componentType: 5125, count: indices.length, type: 'SCALAR' },
+    ],
+  };
+  const pad = (bytes, fill) => {
+    const out = new Uint8Array(Math.ceil(bytes.length / 4) * 4).fill(fill);
+    out.set(bytes);
+    return out;
+  };
+  const text = pad(new TextEncoder().encode(JSON.stringify(json)), 0x20), body = pad(bin, 0);
+  const file = new Uint8Array(28 + text.length + body.length);
+  const view = new DataView(file.buffer);
+  view.setUint32(0, 0x46546c67, true); // 'glTF'
+  view.setUint32(4, 2, true);
+  view.setUint32(8, file.length, true);
+  view.setUint32(12, text.length, true);
+  view.setUint32(16, 0x4e4f534a, true); // 'JSON'
+  file.set(text, 20);
+  view.setUint32(20 + text.length, body.length, true);
+  view.setUint32(24 + text.length, 0x004e4942, true); // 'BIN'
+  file.set(body, 28 + text.length);
+  return file.buffer;
+}
+
+/** The geometry of a .glb's first mesh, as GLTFLoader reads it. */
+function loadGlb(buffer) {
+  return new Promise((resolve, reject) => new GLTFLoader().parse(buffer, '', (gltf) => resolve(gltf.scene.children[0].geometry), reject));
+}
+
 // ---- glTF-style seam-split shapes against subdivide on the original meshes
+for (const name of ['cube', 'torus', 'house']) {
+  await check(`${name}: written as a .glb (seams split), read by GLTFLoader, = subdivide on the original`, async () => {
+    const mesh = shape(name);
+    const split = gltfGeometry(mesh);
+    const geometry = await loadGlb(glb(split.getAttribute('position').array, split.getAttribute('uv').array, Uint32Array.from(split.index.array)));
+    assert.ok(geometry.isBufferGeometry && geometry.getAttribute('uv'));
+    const quads = name !== 'house'; // the house's triangles are its own, not halves of quads
+    const out = subdivideGeometry(geometry, { levels: 2, quads, limit: true });
+    const ref = reference(quads ? mesh : triangulated(mesh), { levels: 2, limit: true, normals: true });
+    sameVertices(ref, drawn(out), [['uv', 2], ['normals', 3]], 2e-5 * extent(mesh.positions));
+    assertWatertight(out);
+  });
+}
+
 const quadShapes = ['cube', 'torus'];
 for (const name of quadShapes) {
   const mesh = shape(name);
