@@ -5,10 +5,13 @@
 #
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, native vs wasm agreement on seeded random meshes (the fixture comes from
-# the native tests), the demo page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's
-# compute shader against a JS reference in headless Chromium on SwiftShader (e2e-webgpu), and a short
-# fuzz run of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
+# the built package, subsurf/three with real three.js in Node (tests/js/three.mjs, with the
+# pinned three and again with 0.150.1, the oldest of its peer range), native vs
+# wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
+# page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
+# a JS reference in headless Chromium on SwiftShader (e2e-webgpu), subsurf/three drawn by a real
+# three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), and a short fuzz run
+# of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -98,6 +101,8 @@ else
 fi
 if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
+  run three node tests/js/three.mjs
+  run three-r150 node tests/js/three.mjs --three node_modules/three-r150
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
@@ -105,11 +110,15 @@ if run build-pkg scripts/build-pkg.sh; then
     skip e2e-demo "tests/e2e/demo.mjs does not exist"
   fi
   run e2e-webgpu node tests/e2e/webgpu.mjs
+  run e2e-three node tests/e2e/three.mjs
 else
   skip pkg-smoke "package build failed"
+  skip three "package build failed"
+  skip three-r150 "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
+  skip e2e-three "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 

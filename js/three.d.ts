@@ -1,0 +1,64 @@
+// subsurf/three: subdivision of a three.js BufferGeometry. The three.js types come from
+// @types/three (install it beside three for TypeScript).
+import type { BufferGeometry } from 'three';
+import type { SubdivideOptions } from './subsurf.js';
+
+/** Thresholds of `quads` (Blender's "Tris to Quads"), in radians. */
+export interface QuadJoinOptions {
+  /** The largest angle between the normals of the two triangles joined. Default 40° (0.698). */
+  faceAngle?: number;
+  /**
+   * The largest angle between the normals of the two triangles of the quad's other diagonal (a
+   * skinny or folded quad exceeds it). Default 40° (0.698).
+   */
+  shapeAngle?: number;
+}
+
+/**
+ * Every option of `subdivide` (scheme, levels, boundary, fvarLinear, limit, creases, corners,
+ * holes, maxFaces, ...), and those of the geometry adapter. `creases` and `corners` name vertices
+ * of the input geometry (values of its index), `holes` its triangles (index offset / 3).
+ */
+export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normals'> {
+  /**
+   * Positions nearer than this distance are welded into one vertex (a spatial hash grid of this
+   * cell size; each position joins the nearest earlier one within the distance). Default 0:
+   * only bit-identical positions are welded.
+   */
+  weld?: number;
+  /**
+   * Join pairs of triangles into quads before subdividing (Blender's "Tris to Quads": greedy by
+   * its join error, never across a crease, a UV or other face-varying seam, a group boundary or a
+   * hole). A triangulated quad mesh gets its quads back. Needs a scheme whose first level takes
+   * quads ('catmull-clark', 'quad-triangle', 'bilinear', 'doo-sabin'). Default false.
+   */
+  quads?: boolean | QuadJoinOptions;
+  /** Edges whose faces' normals differ by more than this angle (radians) become sharp creases. */
+  creaseAngle?: number;
+  /**
+   * Edges where the input split its vertices because their `normal`s differ (by more than about
+   * 1°, at both ends) become sharp creases: a flat-shaded glTF keeps its hard edges. Default false.
+   */
+  sharpNormalSplits?: boolean;
+  /**
+   * The output `normal` attribute: `true` (default) the limit surface's normals (subdivide's
+   * `normals: true`; with `limit: true` the points are on the limit surface too), `'faces'` the
+   * area-weighted normals of the refined faces, `false` none. Along sharp creases each side gets
+   * its own normal, from its faces.
+   */
+  normals?: boolean | 'faces';
+}
+
+/**
+ * Subdivides a triangle `BufferGeometry` (indexed or not) and returns a new indexed
+ * `BufferGeometry`; the input is never modified. Vertices with bit-identical positions are
+ * welded first (undoing glTF's seam splits); attributes that differ between welded copies (uv,
+ * color, ...) are refined as face-varying data, the others vertex-varying; `normal` is
+ * recomputed (see `normals`), `tangent` dropped (call `computeTangents()` on the result);
+ * `skinIndex`/`skinWeight` are interpolated as weights and cut to the four largest,
+ * renormalised; `morphAttributes` are carried (relative ones stay relative), `groups` keep their
+ * faces. Throws an Error naming the problem for bad input.
+ *
+ * Browsers: call `await init()` from 'subsurf' once before. Node: nothing to do.
+ */
+export function subdivideGeometry(geometry: BufferGeometry, options?: SubdivideGeometryOptions): BufferGeometry;
