@@ -4,6 +4,9 @@
 //! weights keeps rows affine (position weights sum to 1, tangent weights to 0); and bad input
 //! gets an error naming what is wrong.
 
+mod common;
+
+use common::diagonal;
 use subsurf::attributes::Attribute;
 use subsurf::io::obj::read_obj_with_tags;
 use subsurf::scheme::subdivide_refined_with;
@@ -21,17 +24,6 @@ fn deform(positions: &[f32], t: f32) -> Vec<f32> {
         p[1] += 0.1 * (3.0 * x + t).sin();
     }
     out
-}
-
-fn diagonal(positions: &[f32]) -> f32 {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in positions.chunks_exact(3) {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).max(0.0).powi(2)).sum::<f32>().sqrt().max(1e-3)
 }
 
 fn assert_close(got: &[f32], want: &[f32], tolerance: f32, what: &str) {

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::sample_meshes;
+use common::{diagonal, sample_meshes};
 use subsurf::attributes::Attribute;
 use subsurf::io::obj::read_obj_with_tags;
 use subsurf::scheme::{predict, predict_counts, stencil_table_mesh, subdivide_with_attributes};
@@ -27,19 +27,6 @@ impl Random {
         self.0 ^= self.0 << 17;
         (self.0 >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
     }
-}
-
-/// The length of the diagonal of the bounding box of `positions` (at least 1e-3).
-fn diagonal(positions: &[f32]) -> f32 {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in positions.chunks_exact(3) {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let d: f32 = (0..3).map(|k| (hi[k] - lo[k]).max(0.0).powi(2)).sum::<f32>().sqrt();
-    d.max(1e-3)
 }
 
 /// `got` equals `want` within `1e-5 × scale` everywhere.

@@ -57,3 +57,16 @@ pub fn assert_same_points(a: &[[f32; 3]], b: &[[f32; 3]], tol: f32, what: &str) 
         }
     }
 }
+
+/// The length of the diagonal of the bounding box of `positions` (at least 1e-3).
+pub fn diagonal(positions: &[f32]) -> f32 {
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in positions.chunks_exact(3) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let d: f32 = (0..3).map(|k| (hi[k] - lo[k]).max(0.0).powi(2)).sum::<f32>().sqrt();
+    d.max(1e-3)
+}
