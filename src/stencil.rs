@@ -75,7 +75,7 @@ impl Stencils {
     /// Appends one row's data: the control vertices `touched` (sorted here) with their weights
     /// in `sums`; returns the row's span, or an empty one (and marks the overflow) when the row
     /// would pass the limit.
-    fn append_row(&mut self, touched: &mut [u32], sums: &[f64]) -> [u32; 2] {
+    fn append_row(&mut self, touched: &mut [u32], sums: &[(f64, u32)]) -> [u32; 2] {
         touched.sort_unstable();
         let start = self.indices.len();
         if start + touched.len() > self.limit {
@@ -83,7 +83,7 @@ impl Stencils {
             return [start as u32, 0];
         }
         for &c in touched.iter() {
-            let w = sums[c as usize];
+            let (w, _) = sums[c as usize];
             if w != 0.0 {
                 self.indices.push(c);
                 self.weights.push(w as f32);
@@ -138,8 +138,9 @@ pub(crate) struct StencilSum<'a> {
     parent: &'a Stencils,
     he_from: &'a [u32],
     face_points: &'a Stencils,
-    sums: Vec<f64>,
-    stamps: Vec<u32>,
+    /// Per control vertex, the row's sum and the stamp of the row that last wrote it (side by
+    /// side: one cache line per touch).
+    sums: Vec<(f64, u32)>,
     stamp: u32,
     touched: Vec<u32>,
     /// The product of the scales of the open groups.
@@ -156,11 +157,11 @@ impl StencilSum<'_> {
         for (&c, &w) in controls.iter().zip(weights) {
             let slot = c as usize;
             let product = f64::from(w) * weight;
-            if self.stamps[slot] == self.stamp {
-                self.sums[slot] += product;
+            let entry = &mut self.sums[slot];
+            if entry.1 == self.stamp {
+                entry.0 += product;
             } else {
-                self.stamps[slot] = self.stamp;
-                self.sums[slot] = product;
+                *entry = (product, self.stamp);
                 self.touched.push(c);
             }
         }
@@ -171,7 +172,7 @@ impl StencilSum<'_> {
         self.touched.clear();
         self.scale = 1.0;
         if self.stamp == u32::MAX {
-            self.stamps.fill(0);
+            self.sums.iter_mut().for_each(|e| e.1 = 0);
             self.stamp = 0;
         }
         self.stamp += 1;
@@ -222,8 +223,7 @@ impl Primvar for Stencils {
             parent: self,
             he_from,
             face_points,
-            sums: vec![0.0; self.num_control],
-            stamps: vec![0; self.num_control],
+            sums: vec![(0.0, 0); self.num_control],
             stamp: 0,
             touched: Vec::with_capacity(256),
             scale: 1.0,
