@@ -272,8 +272,25 @@ pub(crate) fn build_stencils(
     let stencils = stencils.unwrap_or_default();
     let what = || too_large(format!("more than {max_bytes}"));
     let mut table = stencils.into_table(what)?;
-    if let Some([first, second]) = tangents {
-        table = table.with_tangents(first.into_table(what)?, second.into_table(what)?);
+    if let Some(TangentRows { limit, tangents: [first, second] }) = tangents {
+        let mismatch = || {
+            Error::Unsupported(
+                "the tangent stencils do not match the positions'; please report this mesh".into(),
+            )
+        };
+        table = match (first.into_shared_weights(), second.into_shared_weights(), limit) {
+            // Made with the table's own rows (the limit positions): the same entries.
+            (Ok(a), Ok(b), None) => table.with_tangent_weights(a, b).ok_or_else(mismatch)?,
+            // Refined points with limit normals: the entries of the limit positions' rows.
+            (Ok(a), Ok(b), Some(limit)) => {
+                let limit = limit.into_table(what)?;
+                let first = limit.with_weights(a).ok_or_else(mismatch)?;
+                let second = limit.with_weights(b).ok_or_else(mismatch)?;
+                table.with_tangents(first, second)
+            }
+            (Err(a), Err(b), _) => table.with_tangents(a.into_table(what)?, b.into_table(what)?),
+            _ => return Err(mismatch()),
+        };
     }
     if table.num_stencils() != mesh.num_vertices() {
         return Err(Error::Unsupported(format!(
@@ -441,7 +458,7 @@ fn refine_levels<'a, V: Primvar>(
     rows: V,
     fvar: Vec<FVarChannel>,
     finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
-    tangent_rows: Option<&mut Option<[V; 2]>>,
+    tangent_rows: Option<&mut Option<TangentRows<V>>>,
 ) -> Result<Refined<'a>> {
     if options.limit {
         check_limit(options)?;
@@ -463,6 +480,14 @@ fn limit_scheme(scheme: Scheme, mesh: &HalfEdgeMesh) -> Option<Scheme> {
     }
 }
 
+/// The rows of the limit tangents at the last level's vertices, and the rows of their limit
+/// positions when those are not the call's rows (normals without `limit`); rows made together
+/// may share their entries ([`Primvar::limit_rows`]).
+pub(crate) struct TangentRows<V> {
+    pub limit: Option<V>,
+    pub tangents: [V; 2],
+}
+
 /// [`refine_levels`] without the face normals.
 fn run_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
@@ -471,7 +496,7 @@ fn run_levels<'a, V: Primvar>(
     mut rows: V,
     mut fvar: Vec<FVarChannel>,
     finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
-    tangent_rows: Option<&mut Option<[V; 2]>>,
+    tangent_rows: Option<&mut Option<TangentRows<V>>>,
 ) -> Result<Refined<'a>> {
     // The limit masks run on the last level's mesh, for the limit or for its normals.
     let masks_wanted = options.limit || options.normals;
@@ -670,16 +695,17 @@ fn run_levels<'a, V: Primvar>(
         let (frame, limit_rows, tangents) =
             crate::limit::evaluate_with_tangents(&mesh, &rules, &rows, want_tangent_rows);
         let mut poly = mesh.to_poly();
+        let mut limit_rows = Some(limit_rows);
         if options.limit {
             poly.positions = frame.positions;
-            rows = limit_rows;
+            rows = limit_rows.take().unwrap_or_else(|| rows.with_capacity(0));
             let linear = fvar_mode == FVarLinear::All;
             for channel in fvar.iter_mut().filter(|c| c.analysed) {
                 crate::limit::limit_face_varying(&mesh, &rules, &mut channel.level, linear);
             }
         }
         if let Some(out) = tangent_rows {
-            *out = tangents;
+            *out = tangents.map(|tangents| TangentRows { limit: limit_rows, tangents });
         }
         if let Some(tags) = level_tags.as_ref().filter(|t| t.has_holes()) {
             poly = drop_holes(poly, tags, &mut fvar);

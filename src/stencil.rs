@@ -92,6 +92,16 @@ impl Stencils {
         [start as u32, (self.indices.len() - start) as u32]
     }
 
+    /// The weights of rows that share another's entries (the tangent rows of
+    /// [`Primvar::limit_rows`]), in row order; the stencils themselves when they have entries of their own.
+    pub(crate) fn into_shared_weights(self) -> std::result::Result<Vec<f32>, Self> {
+        if self.indices.is_empty() && !self.weights.is_empty() && !self.overflowed {
+            Ok(self.weights)
+        } else {
+            Err(self)
+        }
+    }
+
     /// The table of these stencils in row order; an [`Error::TooLarge`] when a limit was
     /// reached (`what` names the call for the message).
     pub(crate) fn into_table(self, what: impl FnOnce() -> String) -> Result<StencilTable> {
@@ -295,7 +305,16 @@ impl Primvar for Stencils {
         masks: &mut dyn FnMut(u32, &mut [Stencil; 3]),
     ) -> (Self, [Self; 2]) {
         let n = mesh.num_vertices();
-        let mut out = [self.with_capacity(n), self.with_capacity(n), self.with_capacity(n)];
+        // The tangent rows share the position rows' entries: they keep weights only (see
+        // `Stencils::into_shared_weights`).
+        let positions = self.with_capacity(n);
+        let weights_only = || Stencils {
+            indices: Vec::new(),
+            weights: Vec::with_capacity(positions.weights.capacity()),
+            ..self.with_capacity(0)
+        };
+        let mut out = [weights_only(), weights_only(), positions];
+        out.rotate_right(1);
         let mut recorded: [Stencil; 3] = Default::default();
         let mut sources: Vec<(u32, [f64; 3])> = Vec::with_capacity(32);
         let mut sums = vec![[0.0f64; 3]; self.num_control];
@@ -358,8 +377,8 @@ impl Primvar for Stencils {
                 if w == [0.0; 3] {
                     continue;
                 }
+                a.indices.push(control);
                 for (rows, &weight) in [&mut *a, &mut *b, &mut *c].into_iter().zip(&w) {
-                    rows.indices.push(control);
                     rows.weights.push(weight as f32);
                 }
             }
@@ -434,6 +453,25 @@ impl StencilTable {
     pub fn bytes(&self) -> u64 {
         let per_entry = if self.tangent_weights.is_some() { 16 } else { 8 };
         4 * self.offsets.len() as u64 + per_entry * self.indices.len() as u64
+    }
+
+    /// This table with the tangents' weights on its own entries (rows made together by
+    /// [`Primvar::limit_rows`]); `None` unless both have one weight per entry.
+    pub(crate) fn with_tangent_weights(self, first: Vec<f32>, second: Vec<f32>) -> Option<Self> {
+        let entries = self.weights.len();
+        (first.len() == entries && second.len() == entries)
+            .then(|| StencilTable { tangent_weights: Some(Box::new([first, second])), ..self })
+    }
+
+    /// A table of this one's entries with other weights (one per entry), without tangents.
+    pub(crate) fn with_weights(&self, weights: Vec<f32>) -> Option<Self> {
+        (weights.len() == self.weights.len()).then(|| StencilTable {
+            num_control: self.num_control,
+            offsets: self.offsets.clone(),
+            indices: self.indices.clone(),
+            weights,
+            tangent_weights: None,
+        })
     }
 
     /// This table of positions with the tables of the two tangents (same rows, same control
