@@ -7,7 +7,8 @@
 // init() call: Catmull-Clark level 2 gives 98 vertices and 96 quads, and subsurf/three's
 // subdivideGeometry of the cube's 12 triangles (quads: true) gives 98 vertices, 192 triangles.
 //   node     a Node project with only the tarball: import { subdivide } from 'subsurf'
-//   vite     a Vite app (vite build; the repo's pinned vite), served and opened in Chromium
+//   vite     a Vite app (vite build; the repo's pinned vite), served and opened in Chromium; and
+//            the same app under Vite's dev server (`vite`, dependency pre-bundling included)
 //   webpack  a webpack 5 app (webpack with no config file: src/index.js -> dist/main.js)
 //   static   a plain <script type="module"> page with an import map onto node_modules/, served
 //            from the project folder as it is
@@ -15,7 +16,7 @@
 // and 'three' from the app's own node_modules, where subsurf comes from the tarball (checked).
 // npm runs with --prefer-offline. Prints each part's time; exits non-zero on any failure.
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import { createServer } from 'node:http';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -94,7 +95,7 @@ init().then(() => {
   window.__subsurf = result;
 }, (error) => { window.__subsurf = { error: String(error) }; });
 `;
-const REPORT_ERRORS = `<script>addEventListener('error', (e) => { window.__subsurf = { error: String(e.message) }; });</script>`;
+const REPORT_ERRORS = `<link rel="icon" href="data:,"><script>addEventListener('error', (e) => { window.__subsurf = { error: String(e.message) }; });</script>`;
 
 function project(name, dependencies) {
   const dir = join(scratch, name);
@@ -133,8 +134,8 @@ function serve(dir) {
 
 let browser;
 /** Opens dir's index.html in headless Chromium and checks what the page wrote. */
-async function openPage(dir) {
-  const server = await serve(dir);
+async function openPage(dir, url, expectedLogs = []) {
+  const server = dir ? await serve(dir) : null;
   try {
     browser ??= await chromium.launch({
       executablePath: CHROMIUM,
@@ -144,18 +145,44 @@ async function openPage(dir) {
     const page = await browser.newPage();
     const errors = [];
     page.on('pageerror', (error) => errors.push(error.message));
-    page.on('console', (message) => { if (message.type() === 'error' || message.type() === 'warning') errors.push(message.text()); });
+    page.on('console', (message) => {
+      if (!expectedLogs.includes(message.text())) errors.push(`console.${message.type()}: ${message.text()}`);
+    });
     page.on('requestfailed', (request) => errors.push(`${request.url()}: ${request.failure()?.errorText}`));
     page.on('response', (response) => { if (response.status() >= 400) errors.push(`${response.url()}: ${response.status()}`); });
-    await page.goto(`http://127.0.0.1:${server.address().port}/`);
+    await page.goto(url ?? `http://127.0.0.1:${server.address().port}/`);
     const result = await page.waitForFunction(() => window.__subsurf, null, { timeout: 20000 }).then((h) => h.jsonValue(), (e) => ({ error: e.message }));
     const text = await page.textContent('#out');
     await page.close();
     assert.deepEqual(result, EXPECTED, `page result (errors: ${errors.join('; ') || 'none'})`);
     assert.equal(text, JSON.stringify(EXPECTED));
-    assert.deepEqual(errors, [], 'no errors or warnings in the page');
+    assert.deepEqual(errors, [], 'no errors, warnings or other console output in the page');
   } finally {
-    server.close();
+    server?.close();
+  }
+}
+
+/** Runs `vite` (the dev server, dependency pre-bundling and all) in dir and opens its page. */
+async function viteDev(dir) {
+  const port = await new Promise((resolve) => {
+    const probe = createServer().listen(0, '127.0.0.1', () => { const { port } = probe.address(); probe.close(() => resolve(port)); });
+  });
+  const child = spawn(bin('vite'), ['--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: dir, env: { ...process.env, NO_COLOR: '1' } });
+  let output = '';
+  try {
+    await new Promise((resolve, reject) => {
+      const timer = setTimeout(() => reject(new Error(`vite did not start in 20 s:\n${output}`)), 20000);
+      const listen = (data) => {
+        output += data;
+        if (output.includes(`127.0.0.1:${port}`)) { clearTimeout(timer); resolve(); }
+      };
+      child.stdout.on('data', listen);
+      child.stderr.on('data', listen);
+      child.on('exit', (code) => { clearTimeout(timer); reject(new Error(`vite exited ${code}:\n${output}`)); });
+    });
+    await openPage(null, `http://127.0.0.1:${port}/`, ['[vite] connecting...', '[vite] connected.']);
+  } finally {
+    child.kill();
   }
 }
 
@@ -190,6 +217,7 @@ if (tarball) {
     });
     await part('vite: vite build', () => run(bin('vite'), ['build', '--logLevel', 'warn'], join(scratch, 'vite')));
     await part('vite: page in Chromium', () => openPage(join(scratch, 'vite', 'dist')));
+    await part('vite: dev server (vite), page in Chromium', () => viteDev(join(scratch, 'vite')));
   }
 
   await part('webpack: install', () => {
