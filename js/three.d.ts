@@ -59,6 +59,7 @@ export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normal
  * renormalised; `morphAttributes` are carried (relative ones stay relative), `groups` keep their
  * faces. Throws an Error naming the problem for bad input.
  *
- * Browsers: call `await init()` from 'subsurf' once before. Node: nothing to do.
+ * Ready on import from 'subsurf/three' (Node, bundlers, plain pages); from 'subsurf/three/init', call
+ * `await init()` from 'subsurf/init' once before.
  */
 export function subdivideGeometry(geometry: BufferGeometry, options?: SubdivideGeometryOptions): BufferGeometry;

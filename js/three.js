@@ -8,9 +8,11 @@
 // split again where face-varying data (UV seams, sharp edges) needs it, into a new indexed
 // BufferGeometry. The input is never modified. Rules and options: README.md, "three.js".
 //
-// This file imports subsurf's web entry ('./subsurf.js'): browsers must have run `await init()`
-// (from 'subsurf') once before the first call. In Node the package's "./three" export resolves
-// to three-node.js, which loads the .wasm first (as 'subsurf/node' does), so no init is needed.
+// This file imports subsurf's plain glue ('./subsurf.js'), which must have been initialised
+// before the first call. The package's "./three" export does that: in Node it resolves to
+// three-node.js (loads the .wasm synchronously, as 'subsurf/node' does), elsewhere to
+// three-auto.js (a top-level `await init()`). 'subsurf/three/init' is this file as it is: call
+// `await init()` from 'subsurf/init' once first.
 import { BufferAttribute, BufferGeometry } from 'three';
 import { schemeNames, subdivide, toDrawable, vertexNormals } from './subsurf.js';
 
@@ -473,8 +475,8 @@ function checkInitialised() {
     schemeNames();
   } catch (error) {
     throw new Error("subdivideGeometry: subsurf's WebAssembly module is not initialised: in a browser call " +
-      "`await init()` (import init from 'subsurf') once first; in Node import 'subsurf/three' " +
-      `(its "node" export loads the module) or 'subsurf/node' (${error && error.message})`);
+      "`await init()` (import init from 'subsurf/init') once first, or import 'subsurf/three' instead of " +
+      `'subsurf/three/init' (it initialises the module itself, in Node too) (${error && error.message})`);
   }
   initialised = true;
 }

@@ -29,14 +29,16 @@ echo "== build-pkg: wasm-opt -O3 ($("$WASM_OPT" --version))"
 mv "$BG.opt" "$BG"
 AFTER=$(size "$BG")
 
-# The package's own files are checked-in sources in js/: node.js (Node has no fetch() for file:
+# The package's own files are checked-in sources in js/: auto.js and three-auto.js (the browser
+# and bundler entries of '.' and './three': a top-level `await init()`, so no init call is
+# needed), node.js (Node has no fetch() for file:
 # URLs, so the plain `await init()` of a --target web build cannot find its .wasm there; this
 # entry loads it synchronously: import { subdivide } from 'subsurf/node'), node.d.ts, webgpu.js and
 # webgpu.d.ts (subsurf/webgpu: stencil tables evaluated by a WebGPU compute shader), three.js,
 # three-node.js and three.d.ts (subsurf/three: subdivideGeometry for three.js; three-node.js is
 # its Node entry, which loads the .wasm through node.js first), and the
 # package.json and README.md templates, which get the crate's version and description here.
-cp js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts "$OUT/"
+cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts "$OUT/"
 
 VERSION=$(cargo metadata --no-deps --format-version 1 |
   node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const p=JSON.parse(s).packages.find(p=>p.name==="subsurf");process.stdout.write(p.version)})')

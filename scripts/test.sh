@@ -5,7 +5,9 @@
 #
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, native cargo test,
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, subsurf/three with real three.js in Node (tests/js/three.mjs, with the
+# the built package, the package as users install it (consumers: npm pack, installed from the
+# tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
+# Chromium), subsurf/three with real three.js in Node (tests/js/three.mjs, with the
 # pinned three and again with 0.150.1, the oldest of its peer range), native vs
 # wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
 # page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
@@ -101,6 +103,7 @@ else
 fi
 if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
+  run consumers node tests/js/consumers.mjs
   run three node tests/js/three.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
@@ -113,6 +116,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run e2e-three node tests/e2e/three.mjs
 else
   skip pkg-smoke "package build failed"
+  skip consumers "package build failed"
   skip three "package build failed"
   skip three-r150 "package build failed"
   skip native-vs-wasm "package build failed"

@@ -36,6 +36,8 @@ check('package.json', () => {
   assert.equal(pkg.types, './subsurf.d.ts');
   assert.ok(pkg.exports['.'] && pkg.exports['./node'], 'exports . and ./node');
   assert.equal(pkg.exports['.'].node, './node.js', "'.' has a node condition");
+  assert.equal(pkg.exports['.'].default, './auto.js', "'.' initialises itself elsewhere (top-level await)");
+  assert.deepEqual(pkg.exports['./init'], { types: './subsurf.d.ts', default: './subsurf.js' });
   assert.deepEqual(pkg.exports['./webgpu'], { types: './webgpu.d.ts', default: './webgpu.js' });
 });
 

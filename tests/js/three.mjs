@@ -58,7 +58,8 @@ const { shape, subdivide, toDrawable } = subsurf;
 const threeVersion = JSON.parse(readFileSync(join(threeDir, 'package.json'), 'utf8')).version;
 
 await check('package.json: ./three export, peer dependency', () => {
-  assert.deepEqual(pkg.exports['./three'], { types: './three.d.ts', node: './three-node.js', default: './three.js' });
+  assert.deepEqual(pkg.exports['./three'], { types: './three.d.ts', node: './three-node.js', default: './three-auto.js' });
+  assert.deepEqual(pkg.exports['./three/init'], { types: './three.d.ts', default: './three.js' });
   assert.ok(pkg.peerDependencies.three, 'three is a peer dependency');
   assert.equal(pkg.peerDependenciesMeta.three.optional, true);
 });

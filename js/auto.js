@@ -1,0 +1,14 @@
+// subsurf for browsers and bundlers (the "default" condition of the package's "." export):
+// initialises the WebAssembly module with a top-level `await init()`, so that
+//   import { subdivide } from 'subsurf';
+// works with no init call in Vite, webpack 5 and a plain <script type="module"> page. The glue
+// finds its .wasm as `new URL('subsurf_bg.wasm', import.meta.url)`, which bundlers turn into an
+// asset. Code written for the explicit form (`import init from 'subsurf'; await init();`) runs
+// unchanged: init() then returns the module at once. Where top-level await is not available, the
+// explicit entry is 'subsurf/init' (subsurf.js).
+import init from './subsurf.js';
+
+await init();
+
+export * from './subsurf.js';
+export { default } from './subsurf.js';
