@@ -11,32 +11,9 @@ mod osd;
 mod osd_fvar;
 
 use osd::{face_pairs, our_faces, ours, root, Entry, Set};
-use osd_fvar::{read_fvar_fixture, read_fvar_manifest, FvarEntry};
+use osd_fvar::{input_uvs, read_fvar_fixture, read_fvar_manifest, FvarEntry};
 use std::collections::BTreeSet;
-use subsurf::attributes::Attribute;
 use subsurf::{FVarLinear, Scheme};
-
-/// The input's `vt` values and the `vt` index of every face corner, in face order.
-fn input_uvs(text: &str) -> Vec<Attribute> {
-    let (mut values, mut indices) = (Vec::new(), Vec::new());
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("vt") => {
-                let uv: Vec<f32> = words.take(2).map(|w| w.parse().unwrap()).collect();
-                values.extend_from_slice(&uv);
-            }
-            Some("f") => {
-                for corner in words {
-                    let t = corner.split('/').nth(1).expect("a vt index on every corner");
-                    indices.push(t.parse::<u32>().unwrap() - 1);
-                }
-            }
-            _ => {}
-        }
-    }
-    vec![Attribute::face_varying("uv", 2, values, indices)]
-}
 
 /// Compares `scheme`'s values (by default the manifest's own scheme) with the fixture.
 fn compare(e: &FvarEntry, scheme: Option<Scheme>) -> Result<f64, String> {

@@ -22,7 +22,7 @@ use osd::{
     bounding_diagonal, face_pairs, our_faces, ours, root, vertex_map, Entry, RefMesh, Set,
     NO_VERTEX, RELATIVE_TOLERANCE,
 };
-use osd_fvar::{read_fvar_manifest, FvarEntry, FvarFixture};
+use osd_fvar::{input_uvs, read_fvar_manifest, FvarEntry, FvarFixture};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use subsurf::attributes::Attribute;
@@ -38,28 +38,6 @@ const LISTED: usize = 40;
 
 fn dir() -> PathBuf {
     root().join("tests/fixtures/osd_limit_fvar")
-}
-
-/// The input's `vt` values and the `vt` index of every face corner, in face order.
-fn input_uvs(text: &str) -> Vec<Attribute> {
-    let (mut values, mut indices) = (Vec::new(), Vec::new());
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("vt") => {
-                let uv: Vec<f32> = words.take(2).map(|w| w.parse().unwrap()).collect();
-                values.extend_from_slice(&uv);
-            }
-            Some("f") => {
-                for corner in words {
-                    let t = corner.split('/').nth(1).expect("a vt index on every corner");
-                    indices.push(t.parse::<u32>().unwrap() - 1);
-                }
-            }
-            _ => {}
-        }
-    }
-    vec![Attribute::face_varying("uv", 2, values, indices)]
 }
 
 /// A fixture holds both what the position fixtures and the face-varying fixtures hold: `v`,

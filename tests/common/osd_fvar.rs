@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 use std::path::Path;
+use subsurf::attributes::Attribute;
 
 /// One row of `MANIFEST.tsv`.
 #[derive(Clone, Debug)]
@@ -105,4 +106,26 @@ pub fn read_fvar_fixture(path: &Path) -> FvarFixture {
         }
     }
     fixture
+}
+
+/// The input's `vt` values and the `vt` index of every face corner, in face order.
+pub fn input_uvs(text: &str) -> Vec<Attribute> {
+    let (mut values, mut indices) = (Vec::new(), Vec::new());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("vt") => {
+                let uv: Vec<f32> = words.take(2).map(|w| w.parse().unwrap()).collect();
+                values.extend_from_slice(&uv);
+            }
+            Some("f") => {
+                for corner in words {
+                    let t = corner.split('/').nth(1).expect("a vt index on every corner");
+                    indices.push(t.parse::<u32>().unwrap() - 1);
+                }
+            }
+            _ => {}
+        }
+    }
+    vec![Attribute::face_varying("uv", 2, values, indices)]
 }
