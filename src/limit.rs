@@ -38,15 +38,9 @@ pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
 
 /// The limit frame of every vertex of `mesh` (whose positions are the level's), and the limit
 /// of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under the
-/// position masks.
-pub fn evaluate<V: Primvar>(mesh: &HalfEdgeMesh, rules: &LimitRules, rows: &V) -> (LimitFrame, V) {
-    let (frame, rows, _) = evaluate_with_tangents(mesh, rules, rows, false);
-    (frame, rows)
-}
-
-/// [`evaluate`], and with `tangent_rows` also `rows` under the two tangent masks (for stencil
-/// tables of normals).
-pub fn evaluate_with_tangents<V: Primvar>(
+/// position masks; with `tangent_rows`, `rows` under the two tangent masks too (for stencil
+/// tables of normals), all three from [`Primvar::limit_rows`].
+pub fn evaluate<V: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &LimitRules,
     rows: &V,
@@ -111,17 +105,13 @@ pub fn limit_face_varying(
     }
     let width = level.width;
     let mut out = level.values.clone();
-    let row = |values: &[f32], i: u32| {
-        let start = i as usize * width;
-        values[start..start + width].to_vec()
-    };
+    let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
     let mut sum = FVarSum::<0>::new(&level.values, width, &level.corner_values, &[]);
     let mut hood = Neighbourhood::default();
     for v in mesh.vertex_indices() {
         if mesh.out_half_edges(v).is_empty() {
             continue;
         }
-        let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
         if level.tags[v as usize] & tag::MISMATCH == 0 {
             rules.gather(mesh, v, &mut hood);
             sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.position(&hood, w));
@@ -132,14 +122,12 @@ pub fn limit_face_varying(
             if level.tags[value as usize] & tag::CREASE == 0 {
                 continue;
             }
-            let [start, end] = level.crease_ends(value);
-            let a = level.corner_values[mesh.next_in_cell(start) as usize];
-            let b = level.corner_values[mesh.prev_in_cell(end) as usize];
+            let [a, b] = level.crease_end_values(mesh, value);
             let target = &mut out[slot(value)];
             target.fill(0.0);
-            RowSum::add(target, &row(&level.values, a), 1.0 / 6.0);
-            RowSum::add(target, &row(&level.values, b), 1.0 / 6.0);
-            RowSum::add(target, &row(&level.values, value), 2.0 / 3.0);
+            RowSum::add(target, &level.values[slot(a)], 1.0 / 6.0);
+            RowSum::add(target, &level.values[slot(b)], 1.0 / 6.0);
+            RowSum::add(target, &level.values[slot(value)], 2.0 / 3.0);
         }
     }
     level.values = out;

@@ -119,7 +119,7 @@ pub fn subdivide_mesh_refined(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_levels(Cow::Owned(base), options, tags, Rows::default(), Vec::new(), no_attributes, None)
+    refine_with_attributes(Cow::Owned(base), &[], options, tags)
 }
 
 /// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
@@ -130,15 +130,7 @@ pub fn subdivide_mesh_borrowed<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_levels(
-        Cow::Borrowed(base),
-        options,
-        tags,
-        Rows::default(),
-        Vec::new(),
-        no_attributes,
-        None,
-    )
+    refine_with_attributes(Cow::Borrowed(base), &[], options, tags)
 }
 
 /// Subdivides `mesh` with its attribute channels (see [`Attribute`]): vertex-varying channels
@@ -693,12 +685,18 @@ fn run_levels<'a, V: Primvar>(
         let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
         let want_tangent_rows = tangent_rows.is_some();
         let (frame, limit_rows, tangents) =
-            crate::limit::evaluate_with_tangents(&mesh, &rules, &rows, want_tangent_rows);
+            crate::limit::evaluate(&mesh, &rules, &rows, want_tangent_rows);
         let mut poly = mesh.to_poly();
-        let mut limit_rows = Some(limit_rows);
+        // The limit rows replace the level's under `limit`; otherwise the tangent rows may
+        // share their entries.
+        let limit_rows = if options.limit {
+            rows = limit_rows;
+            None
+        } else {
+            Some(limit_rows)
+        };
         if options.limit {
             poly.positions = frame.positions;
-            rows = limit_rows.take().unwrap_or_else(|| rows.with_capacity(0));
             let linear = fvar_mode == FVarLinear::All;
             for channel in fvar.iter_mut().filter(|c| c.analysed) {
                 crate::limit::limit_face_varying(&mesh, &rules, &mut channel.level, linear);

@@ -317,12 +317,12 @@ impl Primvar for Stencils {
         out.rotate_right(1);
         let mut recorded: [Stencil; 3] = Default::default();
         let mut sources: Vec<(u32, [f64; 3])> = Vec::with_capacity(32);
-        let mut sums = vec![[0.0f64; 3]; self.num_control];
-        let mut stamps = vec![0u32; self.num_control];
+        // As in `StencilSum`: per control vertex the row's sums and the stamp of the row.
+        let mut sums = vec![([0.0f64; 3], 0u32); self.num_control];
         let mut touched: Vec<u32> = Vec::with_capacity(256);
         for (v, stamp) in (0..n as u32).zip((1..=u32::MAX).cycle()) {
             if stamp == 1 {
-                stamps.fill(0);
+                sums.iter_mut().for_each(|e| e.1 = 0);
             }
             recorded.iter_mut().for_each(|s| s.sources.clear());
             masks(v, &mut recorded);
@@ -352,12 +352,11 @@ impl Primvar for Stencils {
                     let slot = c as usize;
                     let cw = f64::from(cw);
                     let products = [cw * w[0], cw * w[1], cw * w[2]];
-                    if stamps[slot] == stamp {
-                        let sum = &mut sums[slot];
-                        (0..3).for_each(|k| sum[k] += products[k]);
+                    let entry = &mut sums[slot];
+                    if entry.1 == stamp {
+                        (0..3).for_each(|k| entry.0[k] += products[k]);
                     } else {
-                        stamps[slot] = stamp;
-                        sums[slot] = products;
+                        *entry = (products, stamp);
                         touched.push(c);
                     }
                 }
@@ -373,7 +372,7 @@ impl Primvar for Stencils {
                 continue;
             }
             for &control in &touched {
-                let w = sums[control as usize];
+                let (w, _) = sums[control as usize];
                 if w == [0.0; 3] {
                     continue;
                 }

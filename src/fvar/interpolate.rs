@@ -146,9 +146,7 @@ pub fn interpolate<F: ValueRules, const N: usize>(
             }
             // A crease, or a corner turning into one: its ends are across the span's two
             // bounding edges.
-            let [start, end] = parent.crease_ends(p);
-            let e0 = parent.corner_values[mesh.next_in_cell(start) as usize];
-            let e1 = parent.corner_values[mesh.prev_in_cell(end) as usize];
+            let [e0, e1] = parent.crease_end_values(mesh, p);
             let parent_tag = parent.tags[p as usize];
             let (mut vertex_weight, mut end_weight) = (0.75f32, 0.125f32);
             if parent_tag & tag::SEMI_SHARP != 0 {

@@ -468,6 +468,16 @@ impl FVarLevel {
         }
     }
 
+    /// The values at the far ends of crease `value`'s span: the next corner after its first
+    /// face's and the one before its last face's (see [`FVarLevel::ends`]).
+    pub(crate) fn crease_end_values(&self, mesh: &HalfEdgeMesh, value: u32) -> [u32; 2] {
+        let [start, end] = self.crease_ends(value);
+        [
+            self.corner_values[mesh.next_in_cell(start) as usize],
+            self.corner_values[mesh.prev_in_cell(end) as usize],
+        ]
+    }
+
     /// The value of `v`'s end of edge-side half-edge `x` (the corner of `x`'s face at `v`).
     pub(crate) fn value_at(&self, mesh: &HalfEdgeMesh, x: u32, v: u32) -> u32 {
         let corner = if mesh.he_from[x as usize] == v { x } else { mesh.next_in_cell(x) };

@@ -343,13 +343,14 @@ impl LimitRules<'_> {
                 add(&mut t1, edge(c1), -along);
                 let interior = c1 - c0 - 1;
                 let mut center = 0.0;
-                if loop_scheme {
+                if interior == 0 {
+                    // No face between the sharp edges: across runs from the vertex to the
+                    // midpoint of their ends (both schemes).
+                    center = -6.0;
+                    add(&mut t2, edge(c0), 3.0);
+                    add(&mut t2, edge(c1), 3.0);
+                } else if loop_scheme {
                     match interior {
-                        0 => {
-                            center = -6.0;
-                            add(&mut t2, edge(c0), 3.0);
-                            add(&mut t2, edge(c1), 3.0);
-                        }
                         1 => {
                             center = -3.0;
                             add(&mut t2, edge(c0 + 1), 3.0);
@@ -375,11 +376,6 @@ impl LimitRules<'_> {
                     }
                 } else {
                     match interior {
-                        0 => {
-                            center = -6.0;
-                            add(&mut t2, edge(c0), 3.0);
-                            add(&mut t2, edge(c1), 3.0);
-                        }
                         1 => {
                             add(&mut t2, face(c0), 1.0 / 6.0);
                             add(&mut t2, face(c0 + 1), 1.0 / 6.0);
