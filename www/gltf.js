@@ -351,10 +351,21 @@ function subdivideAll(level) {
   return { made, refused, ms };
 }
 
-/** Subdivides the model with the controls' options and shows the result on the right. */
-function subdivideModel() {
+let requests = 0;
+/** Resolves after the next frame is painted: the busy indicator shows before a long call. */
+const nextPaint = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+
+/**
+ * Subdivides the model with the controls' options and shows the result on the right. The call
+ * runs on this thread; it waits for the busy indicator to be painted first, and a newer request
+ * made meanwhile (a slider dragged on) replaces it.
+ */
+async function subdivideModel() {
   if (!model) return;
+  const request = ++requests;
   setBusy('Subdividing…');
+  await nextPaint();
+  if (request !== requests || !model) return;
   let level = state.level;
   let outcome = null;
   let notice = '';
@@ -363,7 +374,11 @@ function subdivideModel() {
       outcome = subdivideAll(level);
       break;
     } catch (error) {
-      if (!(error instanceof OverBudget)) throw error;
+      if (!(error instanceof OverBudget)) {
+        setBusy(null);
+        showMessage(`${model.name}: not subdivided: ${error.message ?? error}`, 'error');
+        return;
+      }
       notice ||= `Level ${state.level} would draw more than ${count(MAX_TRIANGLES)} triangles; showing level ${level - 1}.`;
     }
   }
@@ -628,7 +643,8 @@ function main() {
   updateQuadsControl();
   $('version').textContent = `subsurf ${version()} · subsurf/three · three.js r${THREE.REVISION}`;
   attachControls();
-  window.subsurfGltf = { THREE, renderer, camera, controls, left, right, get model() { return model; }, frameModel, requestRender };
+  // For tests and the console: showModel({ scene, animations }, name) shows any three.js scene.
+  window.subsurfGltf = { THREE, renderer, camera, controls, left, right, get model() { return model; }, showModel, frameModel, requestRender };
   showModel(builtInModel(), 'Built-in: torus knot and box');
 }
 
