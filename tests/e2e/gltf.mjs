@@ -281,9 +281,19 @@ try {
   check('knot.glb: the right viewport shows the texture (three or more hues)', textureHues(stats) >= 3, JSON.stringify(stats.hues));
   const leftStats = await shot('knot-loop2-left', [0, 0.5]);
   check('knot.glb: the left viewport shows the textured original', textureHues(leftStats) >= 3, JSON.stringify(leftStats.hues));
+  // Dropped on the page, as from a file manager: the same model again, a new result.
+  const transfer = await page.evaluateHandle((base64) => {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+    const dataTransfer = new DataTransfer();
+    dataTransfer.items.add(new File([bytes], 'dropped-knot.glb', { type: 'model/gltf-binary' }));
+    return dataTransfer;
+  }, models.knot);
+  await page.dispatchEvent('#stage', 'drop', { dataTransfer: transfer });
+  data = await shows(data.job, { model: 'dropped-knot.glb', level: 2 }, 'dropped-knot.glb');
+  check('a .glb dropped on the page is opened and subdivided', Number(data.trianglesOut) === 16 * knotTriangles, data.trianglesOut);
   for (const [level, factor] of [[1, 4], [3, 64]]) {
     await setLevel(level);
-    data = await shows(data.job, { model: 'knot.glb', level }, `knot.glb level ${level}`);
+    data = await shows(data.job, { model: 'dropped-knot.glb', level }, `knot.glb level ${level}`);
     check(`knot.glb: level ${level} gives ${factor} × the triangles`, Number(data.trianglesOut) === factor * knotTriangles, data.trianglesOut);
   }
   await setLevel(2);
@@ -305,6 +315,28 @@ try {
   });
   check('box.gltf: framed on its node\'s position, +Y up', framed.target < 1e-6 && Math.abs(framed.centerX - 5) < 1e-3 &&
     framed.up.join() === '0,1,0', JSON.stringify(framed));
+  // Crease angle: Catmull-Clark rounds the box into a blob; with a 30° crease angle its
+  // edges are sharp creases and it stays a box of the input's size.
+  const boxSize = () => page.evaluate(() => {
+    const { THREE, model } = window.subsurfGltf;
+    const { source, target } = model.meshes[0];
+    const size = (geometry) => { geometry.computeBoundingBox(); return geometry.boundingBox.getSize(new THREE.Vector3()).toArray(); };
+    return { input: size(source.geometry), output: size(target.geometry) };
+  });
+  await page.selectOption('#scheme', 'catmull-clark');
+  data = await shows(data.job, { model: 'box.gltf', scheme: 'catmull-clark', quads: true, creaseAngle: 'off' }, 'box.gltf, Catmull-Clark');
+  check('box.gltf, Catmull-Clark with quads: 6 quads, 16 triangles per input triangle', data.trianglesOut === '192', data.trianglesOut);
+  const rounded = await boxSize();
+  await page.check('#crease');
+  data = await shows(data.job, { model: 'box.gltf', creaseAngle: 30 }, 'box.gltf, crease angle 30°');
+  const creased = await boxSize();
+  const near = (a, b) => a.every((x, i) => Math.abs(x - b[i]) < 1e-4);
+  check('box.gltf: without a crease angle Catmull-Clark shrinks the box', rounded.output.every((x, i) => x < 0.95 * rounded.input[i]), JSON.stringify(rounded));
+  check('box.gltf: with a crease angle of 30° it stays the box', near(creased.output, creased.input), JSON.stringify(creased));
+  await page.uncheck('#crease');
+  await page.selectOption('#scheme', 'loop');
+  data = await shows(data.job, { model: 'box.gltf', scheme: 'loop', creaseAngle: 'off' }, 'box.gltf, Loop again');
+
   // The .gltf alone: its .bin cannot be found; the page says which file is missing.
   await page.setInputFiles('#file', boxFiles[0]);
   await page.waitForFunction(() => document.documentElement.dataset.error);
