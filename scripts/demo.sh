@@ -15,6 +15,23 @@ scripts/setup.sh
 rm -rf www/pkg
 cp -r pkg www/pkg
 
+# The glTF page (gltf.html) imports three.js through its import map from www/vendor/three/, laid
+# out as the three package is (build/, examples/jsm/), so that the addons' relative imports
+# resolve. Copied from node_modules (scripts/setup.sh's npm ci installs the pinned three).
+THREE=node_modules/three
+[ -f "$THREE/build/three.module.js" ] || { echo "demo: $THREE is missing; run scripts/setup.sh" >&2; exit 1; }
+rm -rf www/vendor/three
+for file in LICENSE package.json build/three.module.js build/three.core.js \
+    examples/jsm/loaders/GLTFLoader.js examples/jsm/controls/OrbitControls.js \
+    examples/jsm/utils/BufferGeometryUtils.js examples/jsm/utils/SkeletonUtils.js \
+    examples/jsm/environments/RoomEnvironment.js; do
+  # three.module.js imports three.core.js in the pinned three; older builds are one file.
+  [ -f "$THREE/$file" ] || [ "$file" = build/three.core.js ] || { echo "demo: $THREE/$file is missing" >&2; exit 1; }
+  [ -f "$THREE/$file" ] || continue
+  mkdir -p "www/vendor/three/$(dirname "$file")"
+  cp "$THREE/$file" "www/vendor/three/$file"
+done
+
 # Python's http.server, with two additions: no caching (a rebuilt package is picked up on reload)
 # and, unless PORT is given, the next free port when 8080 is taken. The URL is printed once the
 # socket is bound, so it is always the right one. .wasm goes out as application/wasm and .js as

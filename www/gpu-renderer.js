@@ -71,6 +71,8 @@ const UNIFORM_BYTES = 112; // mat4 + 3 vec4
 const BACKGROUND = { r: 0.11, g: 0.122, b: 0.141, a: 1 }; // renderer.js COLORS.background
 const CAGE = [0.35, 0.78, 1, 0.95]; // renderer.js COLORS.cage
 const CAGE_HIDDEN = [0.35, 0.78, 1, 0.16]; // renderer.js COLORS.cageHidden
+const CAGE_DENSE = [0.35, 0.78, 1, 0.1]; // renderer.js COLORS.cageDense, above DENSE_CAGE_EDGES
+const DENSE_CAGE_EDGES = 20_000; // renderer.js DENSE_CAGE_EDGES
 
 // GPUBufferUsage and GPUTextureUsage values (fixed by the WebGPU specification).
 const USAGE = { INDEX: 0x10, UNIFORM: 0x40, COPY_DST: 0x08, RENDER_ATTACHMENT: 0x10 };
@@ -175,7 +177,9 @@ export class GpuRenderer {
     const { device } = this;
     const { width, height, color, depth } = this.ensureTargets();
     const { viewProjection, eye, light } = camera.view(width / height);
-    const tints = [[0, 0, 0, 0], CAGE_HIDDEN, CAGE];
+    // A dense cage, as renderer.js draws it: faint in front, no hidden lines.
+    const dense = (this.mesh?.cageEdgeCount ?? 0) / 2 > DENSE_CAGE_EDGES;
+    const tints = [[0, 0, 0, 0], CAGE_HIDDEN, dense ? CAGE_DENSE : CAGE];
     this.views.forEach(({ buffer }, i) => {
       const data = new Float32Array(UNIFORM_BYTES / 4);
       data.set(viewProjection, 0);
@@ -200,7 +204,7 @@ export class GpuRenderer {
       pass.drawIndexed(mesh.triangleCount);
     }
     if (mesh && cage && mesh.cageEdgeCount > 0) {
-      for (const [i, name] of [[1, 'cageHidden'], [2, 'cageFront']]) {
+      for (const [i, name] of dense ? [[2, 'cageFront']] : [[1, 'cageHidden'], [2, 'cageFront']]) {
         pass.setPipeline(this.pipelines[name]);
         pass.setBindGroup(0, this.views[i].groups[name]);
         pass.setVertexBuffer(0, mesh.cageBuffer);

@@ -90,7 +90,15 @@ export const COLORS = {
   hover: [1, 1, 1, 1],
   cage: [0.35, 0.78, 1, 0.95],
   cageHidden: [0.35, 0.78, 1, 0.16],
+  cageDense: [0.35, 0.78, 1, 0.1],
 };
+
+/**
+ * Above this many cage edges the cage is drawn faint, as lines only: drawn in full, with a dot
+ * per vertex and its hidden lines, a dense scan (a 97k-triangle horse has about 145k edges)
+ * covers its own surface in solid blue. The cage checkbox still hides it altogether.
+ */
+export const DENSE_CAGE_EDGES = 20_000;
 
 function compile(gl, type, source) {
   const shader = gl.createShader(type);
@@ -279,6 +287,11 @@ export class Renderer {
     this.cage.setGroup('hover', hover);
   }
 
+  /** How many edges the cage has (what the checkbox shows or hides). */
+  cageEdgeCount() {
+    return (this.cage.groups.get('edges')?.count ?? 0) / 2;
+  }
+
   /**
    * The wireframe colour, fading out as edges get closer on screen than a few pixels, where
    * lines would only darken the surface. The spacing is estimated from the mesh's projected
@@ -343,8 +356,11 @@ export class Renderer {
     }
     if (cage) {
       const ratio = Math.min(devicePixelRatio, 2);
+      const dense = this.cageEdgeCount() > DENSE_CAGE_EDGES;
       // The cage in front of the surface solid, behind it faint: it usually encloses the surface.
-      for (const [depthFunc, color] of [[gl.GREATER, COLORS.cageHidden], [gl.LEQUAL, COLORS.cage]]) {
+      // A dense cage: its front faint, no hidden lines.
+      const passes = dense ? [[gl.LEQUAL, COLORS.cageDense]] : [[gl.GREATER, COLORS.cageHidden], [gl.LEQUAL, COLORS.cage]];
+      for (const [depthFunc, color] of passes) {
         const front = depthFunc === gl.LEQUAL;
         gl.depthFunc(depthFunc);
         gl.uniform4fv(l.tint, color);
@@ -365,10 +381,12 @@ export class Renderer {
         thick('semi', front ? COLORS.semi : COLORS.sharpHidden, front ? crease : 1);
         thick('sharp', front ? COLORS.sharp : COLORS.sharpHidden, front ? crease + 1 : 1);
         if (front) thick('hover', COLORS.hover, crease + 1);
-        gl.uniform4fv(l.tint, color);
-        gl.uniform1f(l.pointSize, 6 * ratio);
         gl.uniform1i(l.roundPoints, 1);
-        this.cage.draw('edges', gl.POINTS, { allVertices: true });
+        if (!dense) {
+          gl.uniform4fv(l.tint, color);
+          gl.uniform1f(l.pointSize, 6 * ratio);
+          this.cage.draw('edges', gl.POINTS, { allVertices: true });
+        }
         gl.uniform4fv(l.tint, front ? COLORS.sharp : COLORS.sharpHidden);
         gl.uniform1f(l.pointSize, 9 * ratio);
         this.cage.draw('corners', gl.POINTS);
