@@ -8,7 +8,8 @@
 # the built package, the package as users install it (consumers: npm pack, installed from the
 # tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
 # Chromium), subsurf/three with real three.js in Node (tests/js/three.mjs, with the
-# pinned three and again with 0.150.1, the oldest of its peer range), native vs
+# pinned three and again with 0.150.1, the oldest of its peer range), glTF files of
+# OpenSubdiv's shapes read by three's GLTFLoader against OpenSubdiv's results (tests/js/gltf.mjs), native vs
 # wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
 # page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
 # a JS reference in headless Chromium on SwiftShader (e2e-webgpu), subsurf/three drawn by a real
@@ -105,6 +106,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
   run consumers node tests/js/consumers.mjs
   run three node tests/js/three.mjs
+  run gltf node tests/js/gltf.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
@@ -118,6 +120,7 @@ else
   skip pkg-smoke "package build failed"
   skip consumers "package build failed"
   skip three "package build failed"
+  skip gltf "package build failed"
   skip three-r150 "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
