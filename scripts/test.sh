@@ -13,7 +13,8 @@
 # wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
 # page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
 # a JS reference in headless Chromium on SwiftShader (e2e-webgpu), subsurf/three drawn by a real
-# three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), and a short fuzz run
+# three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), a real textured glTF
+# model from npm (@pmndrs/assets) subdivided and drawn there too (e2e-gltf), and a short fuzz run
 # of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
@@ -116,6 +117,7 @@ if run build-pkg scripts/build-pkg.sh; then
   fi
   run e2e-webgpu node tests/e2e/webgpu.mjs
   run e2e-three node tests/e2e/three.mjs
+  run e2e-gltf node tests/e2e/gltf.mjs
 else
   skip pkg-smoke "package build failed"
   skip consumers "package build failed"
@@ -126,6 +128,7 @@ else
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
   skip e2e-three "package build failed"
+  skip e2e-gltf "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 
