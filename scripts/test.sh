@@ -8,13 +8,15 @@
 # the built package, the package as users install it (consumers: npm pack, installed from the
 # tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
 # Chromium), subsurf/three with real three.js in Node (tests/js/three.mjs, with the
-# pinned three and again with 0.150.1, the oldest of its peer range), native vs
+# pinned three and again with 0.150.1, the oldest of its peer range), glTF files of
+# OpenSubdiv's shapes read by three's GLTFLoader against OpenSubdiv's results (tests/js/gltf.mjs), native vs
 # wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
 # page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
 # a JS reference in headless Chromium on SwiftShader (e2e-webgpu), subsurf/three drawn by a real
 # three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), the glTF page
 # (www/gltf.html: glTF files opened, subdivided beside the original, textures, skinning, morphs,
-# dense cages drawn faint on both demo pages) end to end (e2e-gltf), and a short fuzz run
+# dense cages drawn faint on both demo pages) end to end (e2e-gltf), a real textured glTF
+# model from npm (@pmndrs/assets) subdivided and drawn there too (e2e-gltf-model), and a short fuzz run
 # of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
@@ -107,6 +109,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
   run consumers node tests/js/consumers.mjs
   run three node tests/js/three.mjs
+  run gltf node tests/js/gltf.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
@@ -117,16 +120,19 @@ if run build-pkg scripts/build-pkg.sh; then
   run e2e-webgpu node tests/e2e/webgpu.mjs
   run e2e-three node tests/e2e/three.mjs
   run e2e-gltf node tests/e2e/gltf.mjs
+  run e2e-gltf-model node tests/e2e/gltf_model.mjs
 else
   skip pkg-smoke "package build failed"
   skip consumers "package build failed"
   skip three "package build failed"
+  skip gltf "package build failed"
   skip three-r150 "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
   skip e2e-three "package build failed"
   skip e2e-gltf "package build failed"
+  skip e2e-gltf-model "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 
