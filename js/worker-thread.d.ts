@@ -13,7 +13,7 @@ export interface CallContext {
  * (or the promise's) goes back by structured clone, every ArrayBuffer under it transferred;
  * what it throws rejects the call with an Error of the same message.
  */
-export type WorkerFunction = (args: any[], context: CallContext) => unknown;
+export type WorkerFunction = (args: any, context: CallContext) => unknown;
 
 /** subsurf's own functions: spread it into your table, `{ ...functions, myJob }`. */
 export const functions: {

@@ -12,7 +12,9 @@
 # wasm agreement on seeded random meshes (the fixture comes from the native tests), the demo
 # page end-to-end test (when tests/e2e/demo.mjs exists), subsurf/webgpu's compute shader against
 # a JS reference in headless Chromium on SwiftShader (e2e-webgpu), subsurf/three drawn by a real
-# three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), and a short fuzz run
+# three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), subsurf/worker in
+# Node's worker_threads (worker-node) and in headless Chromium (e2e-worker: byte for byte with
+# the main thread, transfers, progress, abort, errors), and a short fuzz run
 # of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
@@ -106,6 +108,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run consumers node tests/js/consumers.mjs
   run three node tests/js/three.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
+  run worker-node node tests/js/worker_node.mjs
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
@@ -114,6 +117,7 @@ if run build-pkg scripts/build-pkg.sh; then
   fi
   run e2e-webgpu node tests/e2e/webgpu.mjs
   run e2e-three node tests/e2e/three.mjs
+  run e2e-worker node tests/e2e/worker.mjs
 else
   skip pkg-smoke "package build failed"
   skip consumers "package build failed"
@@ -123,6 +127,8 @@ else
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
   skip e2e-three "package build failed"
+  skip worker-node "package build failed"
+  skip e2e-worker "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 
