@@ -573,7 +573,7 @@ fn bad_obj_tags_are_thrown_with_the_line() {
 
 #[wasm_bindgen_test]
 fn errors_are_js_errors_and_the_module_keeps_working() {
-    let error: JsValue = subdivide(&cube(), &levels_typo()).unwrap_err().into();
+    let error: JsValue = subdivide(&cube(), &levels_typo()).unwrap_err();
     assert!(error.is_instance_of::<js_sys::Error>());
     let (p, mut i, s) = cube_arrays();
     i[0] = 1000;
