@@ -73,6 +73,9 @@ export class WorkerClient {
     if (this.#closed) {
       return Promise.reject(new Error(`${NAME}: ${name}: this worker was terminated; create another with createWorker()`));
     }
+    if (!Array.isArray(args)) {
+      return Promise.reject(new TypeError(`${NAME}: call('${name}', args): args must be an array of the function's arguments, got ${typeof args}`));
+    }
     if (signal?.aborted) return Promise.reject(signal.reason ?? abortError(`${name} was aborted`));
     return new Promise((resolve, reject) => {
       const job = { id: this.#nextId++, name, args, transfer, onProgress, signal, resolve, reject, onAbort: null };
@@ -104,26 +107,35 @@ export class WorkerClient {
     try {
       module = await this.#module;
     } catch (error) {
-      if (this.#running !== job) return;
-      this.#running = null;
-      this.#settle(job, false, error);
-      this.#pump();
+      if (this.#running === job) this.#fail(job, error);
       return;
     }
     // Aborted or terminated while the wasm was being compiled.
     if (this.#running !== job) return;
-    const thread = (this.#thread ??= this.#open(module));
+    let thread;
+    try {
+      thread = this.#thread ??= this.#open(module);
+    } catch (error) {
+      // `new Worker` refused (a script from another origin, a spawn of the caller's that threw).
+      this.#fail(job, new Error(`${NAME}: could not start a worker for ${job.name}: ${error?.message ?? error}`));
+      return;
+    }
     const message = { type: 'call', id: job.id, name: job.name, args: job.args, progress: Boolean(job.onProgress) };
     try {
       thread.post(message, job.transfer ? [...buffersOf(job.args)] : []);
     } catch (error) {
       // Structured clone refused the arguments (a function, a detached buffer, ...).
-      this.#running = null;
-      this.#settle(job, false, new TypeError(`${NAME}: ${job.name}: the arguments cannot be sent to a worker: ${error.message}`));
-      this.#pump();
+      this.#fail(job, new TypeError(`${NAME}: ${job.name}: the arguments cannot be sent to a worker: ${error.message}`));
       return;
     }
     thread.busy(true);
+  }
+
+  /** Rejects the running call before it reached a thread, and goes on with the next. */
+  #fail(job, error) {
+    this.#running = null;
+    this.#settle(job, false, error);
+    this.#pump();
   }
 
   #open(module) {
@@ -193,8 +205,9 @@ export class WorkerClient {
     this.#stopThread();
     if (this.#closed) return;
     this.#module.then((module) => {
+      // A thread that cannot start now is started (and its error reported) by the next call.
       if (!this.#closed && !this.#thread) this.#thread = this.#open(module);
-    }, () => {});
+    }).catch(() => {});
   }
 
   #stopThread() {

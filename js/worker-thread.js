@@ -82,7 +82,13 @@ async function run(table, names, { id, name, args, progress }, post) {
   }
   try {
     post({ type: 'result', id, value }, [...buffersOf(value)]);
-  } catch (error) {
-    post({ type: 'error', id, name: 'TypeError', message: `subsurf/worker: ${name}'s result cannot be sent back: ${error.message}`, fatal: false }, []);
+  } catch {
+    // A buffer that cannot be transferred (a view of a wasm memory, of a shared buffer) is
+    // copied instead; what cannot even be copied is an error.
+    try {
+      post({ type: 'result', id, value }, []);
+    } catch (error) {
+      post({ type: 'error', id, name: 'TypeError', message: `subsurf/worker: ${name}'s result cannot be sent back: ${error.message}`, fatal: false }, []);
+    }
   }
 }

@@ -17,7 +17,8 @@
 //     finishes; an already aborted signal rejects at once;
 //   - a bad input rejects with subsurf's own message (the main thread's, word for word) and the
 //     next call succeeds; an unknown function is named;
-//   - terminate() rejects what is pending and later calls.
+//   - terminate() rejects what is pending and later calls; arguments not in an array, a worker
+//     script or .wasm that does not load reject with errors that say so.
 // Then prints the figures: the 1M-quad torus at level 1 on the main thread and through the
 // worker (copied and transferred input), and the thread's own time, whose difference is the
 // cost of getting the input there and the result back. Exits non-zero on failure.
@@ -102,7 +103,10 @@ try {
   const page = await browser.newPage();
   const errors = [];
   page.on('pageerror', (error) => errors.push(error.message));
-  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
+  // The missing script and .wasm are requested on purpose; their 404s are no page errors.
+  page.on('console', (message) => {
+    if (message.type() === 'error' && !/404 \(Not Found\)/.test(message.text())) errors.push(message.text());
+  });
   await page.goto(`${origin}/`);
   const results = await page.evaluate(async (torusTiming) => {
     const subsurf = await import('/pkg/subsurf.js');
@@ -163,6 +167,13 @@ try {
     out.asyncFunction = await custom.call('later', ['done']);
     out.unknown = await failure(custom.call('nope', []));
     out.notCloneable = await failure(worker.subdivide(cube, { levels: 1, creases: { edges: new Uint32Array(2), sharpness: () => 1 } }));
+    out.argsNotArray = await failure(worker.call('readObj', 'v 0 0 0'));
+    const missing = createWorker({ spawn: () => new Worker(new URL('/missing.js', location.href), { type: 'module' }) });
+    out.missingScript = await failure(missing.subdivide(cube));
+    missing.terminate();
+    const noWasm = createWorker({ wasm: new URL('/missing.wasm', location.href) });
+    out.missingWasm = await failure(noWasm.subdivide(cube));
+    noWasm.terminate();
 
     // Progress: after each level, with the main thread's counts; also through options.onProgress.
     const told = [];
@@ -274,6 +285,12 @@ try {
     /no function 'nope'.*'subdivide'/.test(results.unknown.message), JSON.stringify(results.unknown));
   check('arguments that cannot be cloned reject with a TypeError saying so', results.notCloneable.name === 'TypeError' &&
     results.notCloneable.message.includes('cannot be sent to a worker'), JSON.stringify(results.notCloneable));
+  check('call() with arguments not in an array: a TypeError', results.argsNotArray.name === 'TypeError' &&
+    results.argsNotArray.message.includes('args must be an array'), JSON.stringify(results.argsNotArray));
+  check('a worker script that does not load rejects the call, saying so', /the worker stopped during subdivide/.test(results.missingScript.message ?? ''),
+    JSON.stringify(results.missingScript));
+  check('a .wasm that does not load rejects the call, saying where and what to do', /missing\.wasm: HTTP 404; pass createWorker\(\{ wasm \}\)/.test(results.missingWasm.message ?? ''),
+    JSON.stringify(results.missingWasm));
   const levels = results.progress.map((p) => p.level).join(',');
   check('progress after each level, in order 1..4', levels === '1,2,3,4', levels);
   check('progress counts are subdivide\'s', JSON.stringify(results.progress) === JSON.stringify(results.progressExpected), JSON.stringify(results.progress));

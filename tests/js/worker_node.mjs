@@ -149,6 +149,20 @@ await check('bad input: subsurf\'s message, and the worker goes on', async () =>
   assert.match((await rejection(worker.call('nope'))).message, /no function 'nope'/);
 });
 
+await check('misuse and failures to start are errors that say what happened', async () => {
+  const error = await rejection(worker.call('readObj', 'v 0 0 0'));
+  assert.ok(error instanceof TypeError && /args must be an array/.test(error.message), `${error}`);
+  const broken = createWorker({ spawn: () => { throw new Error('no threads here'); } });
+  assert.match((await rejection(broken.subdivide(cube))).message, /could not start a worker for subdivide: no threads here/);
+  broken.terminate();
+  const crashing = createWorker({ spawn: () => new Worker('process.exit(3)', { eval: true }) });
+  assert.match((await rejection(crashing.subdivide(cube))).message, /the worker stopped during subdivide: it exited with code 3/);
+  crashing.terminate();
+  const missing = createWorker({ wasm: join(scratch, 'missing.wasm') });
+  assert.match((await rejection(missing.subdivide(cube))).message, /missing\.wasm/);
+  missing.terminate();
+});
+
 await check('terminate(): pending and later calls reject', async () => {
   const pending = rejection(worker.subdivide(cube, { levels: 7 }));
   worker.terminate();
