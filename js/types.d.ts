@@ -100,6 +100,24 @@ export interface SubdivideOptions {
    * vertex. Without `limit`, the points stay where the level put them. Default false.
    */
   normals?: boolean;
+  /**
+   * Called after each level (the last one included) with where the call is. Whatever it throws
+   * stops the call and is thrown by `subdivide`. Used by `subdivide` and `BaseMesh.subdivide`;
+   * `subsurf/worker` passes it on from its worker. Ignored by `predictCounts` and `evaluator`.
+   */
+  onProgress?: (progress: SubdivideProgress) => void;
+}
+
+/** What `SubdivideOptions.onProgress` is told after each level. */
+export interface SubdivideProgress {
+  /** Levels done, 1 to `levels`. */
+  level: number;
+  /** Levels of the call. */
+  levels: number;
+  /** Faces of the mesh this level made (holes are left out only after the last level). */
+  faces: number;
+  /** Vertices of the mesh this level made. */
+  vertices: number;
 }
 
 /** A polygon mesh with every field present, as `shape` returns it. */

@@ -36,9 +36,13 @@ AFTER=$(size "$BG")
 # entry loads it synchronously: import { subdivide } from 'subsurf/node'), node.d.ts, webgpu.js and
 # webgpu.d.ts (subsurf/webgpu: stencil tables evaluated by a WebGPU compute shader), three.js,
 # three-node.js and three.d.ts (subsurf/three: subdivideGeometry for three.js; three-node.js is
-# its Node entry, which loads the .wasm through node.js first), and the
-# package.json and README.md templates, which get the crate's version and description here.
+# its Node entry, which loads the .wasm through node.js first), the worker-*.js and .d.ts files
+# (subsurf/worker: subdivide in a Web Worker or a worker_threads thread; worker.js and
+# worker-node.js call, worker-thread.js answers, worker-script*.js are the threads' scripts),
+# and the package.json and README.md templates, which get the crate's version and description here.
 cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts "$OUT/"
+cp js/worker.js js/worker-node.js js/worker.d.ts js/worker-client.js js/worker-thread.js js/worker-thread.d.ts \
+  js/worker-script.js js/worker-script-node.js "$OUT/"
 
 VERSION=$(cargo metadata --no-deps --format-version 1 |
   node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const p=JSON.parse(s).packages.find(p=>p.name==="subsurf");process.stdout.write(p.version)})')

@@ -16,7 +16,9 @@
 # three.js WebGLRenderer in headless Chromium, pixels read back (e2e-three), the glTF page
 # (www/gltf.html: glTF files opened, subdivided beside the original, textures, skinning, morphs,
 # dense cages drawn faint on both demo pages) end to end (e2e-gltf), a real textured glTF
-# model from npm (@pmndrs/assets) subdivided and drawn there too (e2e-gltf-model), and a short fuzz run
+# model from npm (@pmndrs/assets) subdivided and drawn there too (e2e-gltf-model),
+# subsurf/worker in Node's worker_threads (worker-node) and in headless Chromium (e2e-worker:
+# byte for byte with the main thread, transfers, progress, abort, errors), and a short fuzz run
 # of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
 # A step whose input failed to build is skipped and counted as a failure.
 set -uo pipefail
@@ -111,6 +113,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run three node tests/js/three.mjs
   run gltf node tests/js/gltf.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
+  run worker-node node tests/js/worker_node.mjs
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
@@ -121,6 +124,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run e2e-three node tests/e2e/three.mjs
   run e2e-gltf node tests/e2e/gltf.mjs
   run e2e-gltf-model node tests/e2e/gltf_model.mjs
+  run e2e-worker node tests/e2e/worker.mjs
 else
   skip pkg-smoke "package build failed"
   skip consumers "package build failed"
@@ -133,6 +137,8 @@ else
   skip e2e-three "package build failed"
   skip e2e-gltf "package build failed"
   skip e2e-gltf-model "package build failed"
+  skip worker-node "package build failed"
+  skip e2e-worker "package build failed"
 fi
 run fuzz scripts/fuzz.sh 20
 

@@ -24,6 +24,9 @@ pub enum Error {
     TooLarge(String),
     /// Reading or writing a file failed.
     Io(String),
+    /// The caller's progress callback asked the call to stop (see
+    /// [`crate::scheme::Progress`]); the message says after which level.
+    Cancelled(String),
 }
 
 impl Error {
@@ -43,6 +46,7 @@ impl fmt::Display for Error {
             Error::Unsupported(m) => write!(f, "unsupported input: {m}"),
             Error::TooLarge(m) => write!(f, "output too large: {m}"),
             Error::Io(m) => write!(f, "{m}"),
+            Error::Cancelled(m) => write!(f, "cancelled: {m}"),
         }
     }
 }

@@ -28,6 +28,25 @@ pub use crate::stencil::StencilTable;
 use crate::stencil::Stencils;
 use crate::tags::Tags;
 use std::borrow::Cow;
+use std::ops::ControlFlow;
+
+/// Where a call is, told to a progress callback after each level (the last one included, after
+/// its limit evaluation if any; a call of 0 levels tells nothing). `faces` and `vertices` are
+/// those of the mesh the level made (holes counted until the last level drops them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// Levels done, 1 to `levels`.
+    pub level: usize,
+    /// Levels of the call.
+    pub levels: usize,
+    pub faces: usize,
+    pub vertices: usize,
+}
+
+/// A progress callback: `ControlFlow::Break` stops the call, which then returns
+/// [`Error::Cancelled`] (a flag set by another thread, a deadline). A wasm call cannot be
+/// interrupted from outside; this is the one place where the caller gets control back.
+pub type OnProgress<'p> = dyn FnMut(Progress) -> ControlFlow<()> + 'p;
 
 /// Subdivides `mesh` as `options` says. The input is only read.
 pub fn subdivide(mesh: &PolyMesh, options: &Options) -> Result<PolyMesh> {
@@ -119,7 +138,7 @@ pub fn subdivide_mesh_refined(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_with_attributes(Cow::Owned(base), &[], options, tags)
+    refine_with_attributes(Cow::Owned(base), &[], options, tags, None)
 }
 
 /// [`subdivide_mesh_refined`] that leaves `base` to the caller, to subdivide again with other
@@ -130,7 +149,7 @@ pub fn subdivide_mesh_borrowed<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_with_attributes(Cow::Borrowed(base), &[], options, tags)
+    refine_with_attributes(Cow::Borrowed(base), &[], options, tags, None)
 }
 
 /// Subdivides `mesh` with its attribute channels (see [`Attribute`]): vertex-varying channels
@@ -153,7 +172,7 @@ pub fn subdivide_refined_with(
     tags: &Tags,
 ) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, None)
 }
 
 /// [`subdivide_mesh_refined`] with attribute channels.
@@ -163,7 +182,7 @@ pub fn subdivide_mesh_refined_with(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'static>> {
-    refine_with_attributes(Cow::Owned(base), attributes, options, tags)
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, None)
 }
 
 /// [`subdivide_mesh_borrowed`] with attribute channels.
@@ -173,7 +192,31 @@ pub fn subdivide_mesh_borrowed_with<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Refined<'a>> {
-    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags)
+    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags, None)
+}
+
+/// [`subdivide_mesh_refined_with`] that tells `progress` after each level (see [`Progress`]);
+/// a `Break` from it stops the call with [`Error::Cancelled`].
+pub fn subdivide_mesh_refined_with_progress(
+    base: HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    progress: &mut OnProgress<'_>,
+) -> Result<Refined<'static>> {
+    refine_with_attributes(Cow::Owned(base), attributes, options, tags, Some(progress))
+}
+
+/// [`subdivide_mesh_borrowed_with`] that tells `progress` after each level, as
+/// [`subdivide_mesh_refined_with_progress`].
+pub fn subdivide_mesh_borrowed_with_progress<'a>(
+    base: &'a HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    progress: &mut OnProgress<'_>,
+) -> Result<Refined<'a>> {
+    refine_with_attributes(Cow::Borrowed(base), attributes, options, tags, Some(progress))
 }
 
 /// The stencil table of `mesh` under `options` and `tags` (see [`crate::stencil`]): for every
@@ -258,6 +301,7 @@ pub(crate) fn build_stencils(
             attributes::unpack_all(Rows::default(), &Default::default(), fvar, &fvar_layout, count)
         },
         options.normals.then_some(&mut tangents),
+        None,
     )?;
     let normals = refined.take_normals();
     let (mesh, face_varying) = refined.into_parts();
@@ -310,6 +354,7 @@ fn refine_with_attributes<'a>(
     attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
+    progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     check_attributes(attributes, &base)?;
     // The two tangents and the normal add nine floats per vertex.
@@ -339,13 +384,14 @@ fn refine_with_attributes<'a>(
             Vec::new(),
             no_attributes,
             None,
+            progress,
         );
     }
     let (rows, layout) = attributes::pack(attributes, base.num_vertices());
     let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
     let count = attributes.len();
     let finish = |rows, fvar| attributes::unpack_all(rows, &layout, fvar, &fvar_layout, count);
-    refine_levels(base, options, tags, rows, fvar, finish, None)
+    refine_levels(base, options, tags, rows, fvar, finish, None, progress)
 }
 
 /// Subdivides `mesh` as `options` says and evaluates the last level at the limit (OpenSubdiv's
@@ -372,7 +418,7 @@ pub fn subdivide_limit_with(
 ) -> Result<Refined<'static>> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
     let options = Options { limit: true, normals: true, ..options.clone() };
-    refine_with_attributes(Cow::Owned(base), attributes, &options, tags)
+    refine_with_attributes(Cow::Owned(base), attributes, &options, tags, None)
 }
 
 /// [`subdivide_limit`] of an already built mesh, which is left to the caller.
@@ -382,7 +428,7 @@ pub fn subdivide_mesh_limit<'a>(
     tags: &Tags,
 ) -> Result<Refined<'a>> {
     let options = Options { limit: true, normals: true, ..options.clone() };
-    refine_with_attributes(Cow::Borrowed(base), &[], &options, tags)
+    refine_with_attributes(Cow::Borrowed(base), &[], &options, tags, None)
 }
 
 /// Refuses a limit of `options` that is not defined, before any work.
@@ -443,6 +489,8 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
 /// [`Primvar`], such as the stencils of [`crate::stencil`]) and the face-varying channels `fvar`
 /// alongside; `finish` turns the last level's rows and channels back into attribute channels.
 /// With `limit`, the last level is evaluated at the limit (`rows` too, by the position masks).
+/// `progress` is told after each level.
+#[allow(clippy::too_many_arguments)]
 fn refine_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
@@ -451,12 +499,36 @@ fn refine_levels<'a, V: Primvar>(
     fvar: Vec<FVarChannel>,
     finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
+    mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     if options.limit {
         check_limit(options)?;
     }
-    let refined = run_levels(base, options, tags, rows, fvar, finish, tangent_rows)?;
-    Ok(if options.normals { refined.with_face_normals() } else { refined })
+    let levels = options.levels();
+    let refined =
+        run_levels(base, options, tags, rows, fvar, finish, tangent_rows, progress.as_deref_mut())?;
+    let refined = if options.normals { refined.with_face_normals() } else { refined };
+    if levels > 0 {
+        let done = Progress {
+            level: levels,
+            levels,
+            faces: refined.num_faces(),
+            vertices: refined.positions().len() / 3,
+        };
+        report(progress, done)?;
+    }
+    Ok(refined)
+}
+
+/// Tells `progress`, if any, where the call is; a `Break` becomes [`Error::Cancelled`].
+fn report(progress: Option<&mut OnProgress<'_>>, done: Progress) -> Result<()> {
+    match progress.map(|tell| tell(done)) {
+        Some(ControlFlow::Break(())) => Err(Error::Cancelled(format!(
+            "the progress callback stopped the call after level {} of {}",
+            done.level, done.levels
+        ))),
+        _ => Ok(()),
+    }
 }
 
 /// The scheme whose limit masks apply after a level of `scheme` on `mesh` (Quad/Triangle is
@@ -480,7 +552,9 @@ pub(crate) struct TangentRows<V> {
     pub tangents: [V; 2],
 }
 
-/// [`refine_levels`] without the face normals.
+/// [`refine_levels`] without the face normals, telling `progress` after each level but the
+/// last (which the caller tells once the result is whole).
+#[allow(clippy::too_many_arguments)]
 fn run_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
@@ -489,6 +563,7 @@ fn run_levels<'a, V: Primvar>(
     mut fvar: Vec<FVarChannel>,
     finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
+    mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     // The limit masks run on the last level's mesh, for the limit or for its normals.
     let masks_wanted = options.limit || options.normals;
@@ -679,6 +754,15 @@ fn run_levels<'a, V: Primvar>(
                 return Ok(Refined::quads(positions, parent, finish(rows, fvar)));
             }
         };
+        if level + 1 < levels {
+            let done = Progress {
+                level: level + 1,
+                levels,
+                faces: mesh.num_cells(),
+                vertices: mesh.num_vertices(),
+            };
+            report(progress.as_deref_mut(), done)?;
+        }
     }
     if masks_wanted {
         let starts = first_faces.as_ref().map(|f| &f.vertices[..]);

@@ -1,7 +1,8 @@
 // The subsurf demo page: pick a mesh (built in, or your own OBJ), a scheme per level, a level
-// count and a boundary rule; a worker subdivides it with subsurf in WebAssembly and the page draws
-// the result over its control cage. The page itself only draws: meshes, OBJ parsing and writing,
-// the predicted sizes, normals and edge lists all come from subsurf (see worker.js).
+// count and a boundary rule; a worker (subsurf/worker, see jobs.js) subdivides it with subsurf in
+// WebAssembly, telling the page each level done, and the page draws the result over its control
+// cage. The page itself only draws: meshes, OBJ parsing and writing, the predicted sizes,
+// normals and edge lists all come from subsurf (see worker.js).
 //
 // Normals: every job asks subdivide for `normals: true` and the surface is shaded with them: the
 // limit surface's normals where the last level's scheme has limit masks (Catmull-Clark, Loop,
@@ -34,7 +35,8 @@
 // data-subdivide-ms, data-creases (creased edges the result honours), data-uv ("true" when the
 // drawn surface has refined UVs), data-fvar-linear and data-drawn-vertices (the shaded mesh's
 // vertices: more than data-vertices where UV seams split them); data-busy="true" from a
-// change until its result is on screen (or refused); data-error holds the error message on
+// change until its result is on screen (or refused), and meanwhile data-progress "2/4" once
+// subdivide has done level 2 of 4 (the busy indicator says "level 2/4" too); data-error holds the error message on
 // screen, if any; data-max-level the highest level under the memory guard; data-superseded how
 // many jobs were cut short; data-normals "limit" or "faces" (where the shown result's normals
 // come from) and data-limit ("true" when its points are on the limit surface). The animation:
@@ -206,9 +208,14 @@ function showMessage(text, kind = '') {
 }
 
 let busyTimer = null;
+let busyUpdate = null;
+let busyLevels = ''; // "level 2/4" once subdivide has told the first level of the job
 function setBusy(busy, text) {
   clearInterval(busyTimer);
   busyTimer = null;
+  busyUpdate = null;
+  busyLevels = '';
+  delete root.dataset.progress;
   $('busy').hidden = true;
   if (!busy) {
     delete root.dataset.busy;
@@ -216,13 +223,21 @@ function setBusy(busy, text) {
   }
   root.dataset.busy = 'true';
   const since = performance.now();
-  const update = () => {
+  busyUpdate = () => {
     const elapsed = performance.now() - since;
     if (elapsed < BUSY_DELAY_MS) return;
     $('busy').hidden = false;
-    $('busy-text').textContent = `${text} ${(elapsed / 1000).toFixed(1)} s`;
+    $('busy-text').textContent = `${text}${busyLevels ? ` ${busyLevels} ·` : ''} ${(elapsed / 1000).toFixed(1)} s`;
   };
-  busyTimer = setInterval(update, 100);
+  busyTimer = setInterval(busyUpdate, 100);
+}
+
+/** Shows how far subdivide is: told by the worker after each level of the running job. */
+function showProgress({ level, levels }) {
+  if (!busyUpdate) return;
+  busyLevels = `level ${level}/${levels}`;
+  root.dataset.progress = `${level}/${levels}`;
+  busyUpdate();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -274,6 +289,7 @@ function submit({ clampLevel = false } = {}) {
   };
   runner.run(job, {
     plan: (message) => planned(message, context),
+    progress: showProgress,
     result: (message) => finished(message, context),
     error: (message) => failed(message, context),
   });

@@ -1,11 +1,12 @@
 // The demo's worker: every call into subsurf that can take time runs here, so the page never
-// freezes. The page compiles the WebAssembly module once and posts it to each worker it starts
-// (instantiating a compiled module takes milliseconds), and terminates a worker whose job has
-// been superseded: terminating is the only way to stop a running wasm call.
+// freezes. It is a worker script of subsurf/worker's (jobs.js starts it with createWorker's
+// `spawn`): `expose` from the package answers the page's calls with the functions below, posts
+// their progress, transfers the buffers of their results, and the package on the page aborts a
+// superseded job by terminating this worker and starting a fresh one from the compiled module.
 //
-// Messages in:
-//   { type: 'init', module }                      → { type: 'ready', version, schemes, boundaries, fvarModes, shapes }
-//   { type: 'job', id, input, schemes, level, clampLevel, boundary, maxFaces, tags, fvarLinear, limit }
+// Functions (called as worker.call(name, [argument], { signal, onProgress })):
+//   info()  → { version, schemes, boundaries, fvarModes, shapes }   (and warms the engine up)
+//   job({ input, schemes, level, clampLevel, boundary, maxFaces, tags, fvarLinear, limit })
 //       input: { kind: 'shape', name } | { kind: 'obj', name, text } | { kind: 'mesh', mesh }
 //       schemes: one scheme name per level for every level the page could ask for (the page's
 //       per-level choices, then its main scheme); the job uses the first `level` of them.
@@ -14,9 +15,10 @@
 //       fvarLinear: how the mesh's UVs (its face-varying channel attributes.uv, if it has one)
 //       are refined, for the checker texture. limit: ask for the limit surface (limit: true);
 //       normals (normals: true) are always asked for.
-//     → { type: 'plan', id, level, maxLevel, predicted, boundary, mesh? }
-//       (mesh: the input with its tags and UVs, when not sent in; boundary: the one used)
-//     → { type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, limitNotice,
+//     progress: { type: 'plan', level, maxLevel, predicted, boundary, mesh? }
+//       (mesh: the input with its tags and UVs, when not sent in; boundary: the one used), then
+//       { type: 'level', level, levels, faces, vertices } after each level of subdivide
+//     → { type: 'result', level, result, surface, edges, cageEdges, uvNotice, limitNotice,
 //         normals, limit, options, timings }
 //       surface: { positions, normals, uvs, triangles, origins } to shade: with UVs toDrawable's
 //       mesh (vertices split along seams; origins: the result vertex of each), else the result
@@ -25,31 +27,23 @@
 //       'limit' (the limit surface's, from the last level's limit masks) or 'faces' (from the
 //       faces around each vertex); limit: whether the points are on the limit. options: the
 //       subdivide options used, for an Evaluator of the same surface (the page's animation).
-//     or { type: 'error', id, stage: 'read' | 'predict' | 'subdivide', message, fatal }
-//   { type: 'writeObj', id, mesh }                → { type: 'obj', id, blob } or an error
+//     or { type: 'error', stage: 'read' | 'predict' | 'subdivide', message } for a refusal;
+//       a trap inside wasm is thrown instead, so that the package replaces this worker.
+//   objBlob(mesh) → a Blob of writeObj's text (a Blob goes to the page without a copy)
 import {
-  initSync, subdivide, readObj, writeObj, shape, shapeNames, schemeNames, boundaryRules, fvarLinearModes,
+  subdivide, readObj, writeObj, shape, shapeNames, schemeNames, boundaryRules, fvarLinearModes,
   predictCounts, edgeList, toDrawable, version,
 } from './pkg/subsurf.js';
+import { expose } from './pkg/worker-thread.js';
 
-let ready = false;
-const waiting = [];
-
-self.onmessage = ({ data }) => {
-  if (data.type === 'init') {
-    initSync({ module: data.module });
+expose({
+  info() {
     warmUp();
-    ready = true;
-    self.postMessage({
-      type: 'ready', version: version(), schemes: schemeNames(), boundaries: boundaryRules(), fvarModes: fvarLinearModes(), shapes: shapeNames(),
-    });
-    waiting.splice(0).forEach(handle);
-  } else if (ready) {
-    handle(data);
-  } else {
-    waiting.push(data);
-  }
-};
+    return { version: version(), schemes: schemeNames(), boundaries: boundaryRules(), fvarModes: fvarLinearModes(), shapes: shapeNames() };
+  },
+  job: ([job], { progress }) => runJob(job, progress ?? (() => {})),
+  objBlob: ([mesh]) => new Blob([writeObj(mesh)], { type: 'model/obj' }),
+});
 
 // The engine compiles wasm functions on their first call; a tiny job here keeps that out of the
 // time the page shows for the first real one.
@@ -67,21 +61,17 @@ function warmUp() {
   }
 }
 
-function handle(message) {
-  if (message.type === 'job') runJob(message);
-  else if (message.type === 'writeObj') exportObj(message);
-}
+const isFatal = (error) => error instanceof WebAssembly.RuntimeError || error instanceof RangeError;
 
-// A stage of a job: runs `work`; on a thrown error posts it and returns undefined. A
+// A stage of a job: runs `work`; a refusal comes back as { error } for the page to show. A
 // RuntimeError is a trap inside wasm (a bug, or memory exhausted): this instance is then
-// unusable, so the page replaces the worker (`fatal`).
-function stage(id, name, work) {
+// unusable, so it is thrown on, and subsurf/worker replaces the worker.
+function stage(name, work) {
   try {
     return { value: work() };
   } catch (error) {
-    const fatal = error instanceof WebAssembly.RuntimeError || error instanceof RangeError;
-    self.postMessage({ type: 'error', id, stage: name, message: String(error?.message ?? error), fatal });
-    return undefined;
+    if (isFatal(error)) throw error;
+    return { error: { type: 'error', stage: name, message: String(error?.message ?? error) } };
   }
 }
 
@@ -94,10 +84,9 @@ function inputMesh({ input }) {
   }
 }
 
-function runJob(job) {
-  const { id } = job;
-  const read = stage(id, 'read', () => inputMesh(job));
-  if (!read) return;
+function runJob(job, progress) {
+  const read = stage('read', () => inputMesh(job));
+  if (read.error) return read.error;
   const mesh = read.value;
   // A file's interpolateboundary tag chooses the boundary rule; the page then shows it.
   const { boundary: fileBoundary, ...fileTags } = mesh.tags ?? {};
@@ -106,19 +95,20 @@ function runJob(job) {
 
   // The same counts formulas as subdivide's maxFaces guard, so maxLevel is exactly the highest
   // level the library accepts.
-  const planned = stage(id, 'predict', () => predictCounts(mesh, { scheme: job.schemes, boundary }));
-  if (!planned) return;
+  const planned = stage('predict', () => predictCounts(mesh, { scheme: job.schemes, boundary }));
+  if (planned.error) return planned.error;
   const predicted = planned.value;
   let maxLevel = 0;
   while (maxLevel + 1 < predicted.faces.length && predicted.faces[maxLevel + 1] <= job.maxFaces) maxLevel++;
   const level = job.clampLevel ? Math.min(job.level, maxLevel) : job.level;
-  const plan = { type: 'plan', id, level, maxLevel, boundary, predicted: { vertices: [...predicted.vertices], faces: [...predicted.faces] } };
+  const plan = { type: 'plan', level, maxLevel, boundary, predicted: { vertices: [...predicted.vertices], faces: [...predicted.faces] } };
   if (job.input.kind !== 'mesh') plan.mesh = mesh; // copied: this worker still needs it
-  self.postMessage(plan);
+  progress(plan);
 
   const options = {
     ...tags, scheme: job.schemes.slice(0, level), levels: level, boundary, maxFaces: job.maxFaces, fvarLinear: job.fvarLinear, normals: true,
   };
+  const onProgress = (p) => progress({ type: 'level', ...p });
   const { attributes, ...plain } = mesh;
   const withUv = attributes?.uv ? { ...plain, attributes: { uv: attributes.uv } } : plain;
   const started = performance.now();
@@ -130,47 +120,39 @@ function runJob(job) {
   let limitNotice = '';
   let useUv = withUv !== plain;
   let useLimit = Boolean(job.limit);
-  let refined;
+  let result;
   for (;;) {
     try {
-      refined = { value: subdivide(useUv ? withUv : plain, { ...options, limit: useLimit }) };
+      result = subdivide(useUv ? withUv : plain, { ...options, limit: useLimit, onProgress });
       break;
     } catch (error) {
-      const fatal = error instanceof WebAssembly.RuntimeError || error instanceof RangeError;
-      if (!fatal && useLimit) {
+      if (isFatal(error)) throw error;
+      if (useLimit) {
         useLimit = false;
         limitNotice = `Limit surface not shown: ${String(error?.message ?? error)}`;
-      } else if (!fatal && useUv) {
+      } else if (useUv) {
         useUv = false;
         uvNotice = `UVs not shown: ${String(error?.message ?? error)}`;
         useLimit = Boolean(job.limit);
         limitNotice = '';
       } else {
-        refined = stage(id, 'subdivide', () => { throw error; });
-        break;
+        return { type: 'error', stage: 'subdivide', message: String(error?.message ?? error) };
       }
     }
   }
-  if (!refined) return;
   const subdivided = performance.now();
-  const result = refined.value;
-  const display = stage(id, 'subdivide', () => ({
+  const display = stage('subdivide', () => ({
     surface: surfaceOf(result),
     edges: edgeList(result),
     cageEdges: edgeList(mesh),
   }));
-  if (!display) return;
+  if (display.error) return display.error;
   const { surface, edges, cageEdges } = display.value;
   const timings = { subdivide: subdivided - started, display: performance.now() - subdivided };
-  const arrays = [result.positions, result.indices, result.faceSizes, result.triangles, result.normals, edges, cageEdges];
-  if (surface.uvs) arrays.push(surface.positions, surface.normals, surface.uvs, surface.triangles, surface.origins);
-  for (const channel of Object.values(result.attributes ?? {})) arrays.push(channel.array, channel.indices);
-  const transfer = [...new Set(arrays.filter(Boolean).map((array) => array.buffer))];
   const used = { ...options, limit: useLimit };
   const normals = normalSource(used, result);
-  self.postMessage({
-    type: 'result', id, level, result, surface, edges, cageEdges, uvNotice, limitNotice, normals, limit: useLimit, options: used, timings,
-  }, transfer);
+  // Every buffer of this object is transferred to the page (expose does it), none copied.
+  return { type: 'result', level, result, surface, edges, cageEdges, uvNotice, limitNotice, normals, limit: useLimit, options: used, timings };
 }
 
 /**
@@ -208,9 +190,4 @@ function surfaceOf(result) {
     triangles: drawable.triangles,
     origins: drawable.origins,
   };
-}
-
-function exportObj({ id, mesh }) {
-  const written = stage(id, 'write', () => writeObj(mesh));
-  if (written) self.postMessage({ type: 'obj', id, blob: new Blob([written.value], { type: 'model/obj' }) });
 }

@@ -17,9 +17,10 @@ use crate::attributes::{self, Attribute};
 use crate::error::Error;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::scheme::{self, Boundary, FVarLinear, Options, Refined, Scheme};
+use crate::scheme::{self, Boundary, FVarLinear, Options, Progress, Refined, Scheme};
 use crate::tags::{Corner, Crease, CreaseMethod, Tags};
-use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
+use js_sys::{Array, Float32Array, Function, Object, Reflect, Uint32Array};
+use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
@@ -48,7 +49,7 @@ const TYPESCRIPT_SECTION: &'static str = TYPESCRIPT_TYPES;
 const TYPESCRIPT_TYPES: &str = include_str!("../../js/types.d.ts");
 
 /// Option keys, in the order error messages list them. Must match what [`read_options`] reads.
-const OPTION_KEYS: [&str; 13] = [
+const OPTION_KEYS: [&str; 14] = [
     "scheme",
     "levels",
     "boundary",
@@ -62,6 +63,7 @@ const OPTION_KEYS: [&str; 13] = [
     "fvarLinear",
     "limit",
     "normals",
+    "onProgress",
 ];
 
 /// Mesh fields read from the input object.
@@ -96,19 +98,69 @@ fn js_error(error: Error) -> JsError {
 /// written over instead of a fresh array being made (for 4M quads, fresh arrays cost 120 ms of
 /// the call in page faults, refilling them 30). The result is a new object; use its arrays, not
 /// `into`'s, which keeps any it could not reuse.
+///
+/// `options.onProgress`, a function, is called after each level with `{ level, levels, faces,
+/// vertices }`; whatever it throws stops the call and is thrown by `subdivide`.
 #[wasm_bindgen(js_name = subdivide, unchecked_return_type = "SubdivideResult")]
 pub fn subdivide(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "SubdivideResult")] into: &JsValue,
-) -> JsResult<JsValue> {
-    let (options, tags) = read_options(options).map_err(js_error)?;
+) -> Result<JsValue, JsValue> {
+    let (parsed, tags) = read_options(options).map_err(js_error)?;
+    let on_progress = read_on_progress(options).map_err(js_error)?;
     let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
     let attributes = read_attributes(mesh).map_err(js_error)?;
-    let refined = scheme::subdivide_mesh_refined_with(base, &attributes, &options, &tags)
-        .map_err(js_error)?;
-    refined_object(&refined, lent)
+    let refined = with_progress(on_progress, |progress| match progress {
+        None => scheme::subdivide_mesh_refined_with(base, &attributes, &parsed, &tags),
+        Some(progress) => scheme::subdivide_mesh_refined_with_progress(
+            base,
+            &attributes,
+            &parsed,
+            &tags,
+            progress,
+        ),
+    })?;
+    Ok(refined_object(&refined, lent)?)
+}
+
+/// Runs `call` with a progress callback that calls the JS function `on_progress`, if any. What
+/// the function throws stops the call (`ControlFlow::Break`) and is thrown as it is, so that
+/// the caller sees its own exception rather than a message of ours.
+fn with_progress<'a>(
+    on_progress: Option<Function>,
+    call: impl FnOnce(Option<&mut scheme::OnProgress<'_>>) -> Result<Refined<'a>, crate::error::Error>,
+) -> Result<Refined<'a>, JsValue> {
+    let Some(function) = on_progress else {
+        return call(None).map_err(|e| js_error(e).into());
+    };
+    let mut thrown = None;
+    let mut tell = |p: Progress| match progress_object(p)
+        .and_then(|object| function.call1(&JsValue::UNDEFINED, &object))
+    {
+        Ok(_) => ControlFlow::Continue(()),
+        Err(exception) => {
+            thrown = Some(exception);
+            ControlFlow::Break(())
+        }
+    };
+    let result = call(Some(&mut tell));
+    match (result, thrown) {
+        (_, Some(exception)) => Err(exception),
+        (result, None) => result.map_err(|e| js_error(e).into()),
+    }
+}
+
+/// `SubdivideProgress`: `{ level, levels, faces, vertices }`.
+fn progress_object(p: Progress) -> Result<JsValue, JsValue> {
+    let object = Object::new();
+    for (key, value) in
+        [("level", p.level), ("levels", p.levels), ("faces", p.faces), ("vertices", p.vertices)]
+    {
+        set_field(&object, key, &JsValue::from_f64(value as f64))?;
+    }
+    Ok(object.into())
 }
 
 /// A mesh built once, to be subdivided many times: with other options (a level slider), or with
@@ -151,13 +203,18 @@ impl BaseMesh {
         &self,
         #[wasm_bindgen(unchecked_optional_param_type = "SubdivideOptions")] options: &JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "SubdivideResult")] into: &JsValue,
-    ) -> JsResult<JsValue> {
-        let (options, tags) = read_options(options).map_err(js_error)?;
+    ) -> Result<JsValue, JsValue> {
+        let (parsed, tags) = read_options(options).map_err(js_error)?;
+        let on_progress = read_on_progress(options).map_err(js_error)?;
         let lent = Lent::read(into).map_err(js_error)?;
-        let refined =
-            scheme::subdivide_mesh_borrowed_with(&self.mesh, &self.attributes, &options, &tags)
-                .map_err(js_error)?;
-        refined_object(&refined, lent)
+        let (mesh, attributes) = (&self.mesh, &self.attributes);
+        let refined = with_progress(on_progress, |progress| match progress {
+            None => scheme::subdivide_mesh_borrowed_with(mesh, attributes, &parsed, &tags),
+            Some(progress) => scheme::subdivide_mesh_borrowed_with_progress(
+                mesh, attributes, &parsed, &tags, progress,
+            ),
+        })?;
+        Ok(refined_object(&refined, lent)?)
     }
 
     /// `predictCounts(mesh, options)` for this mesh: the sizes after each level, without

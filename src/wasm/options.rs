@@ -63,6 +63,26 @@ pub(super) fn read_options(value: &JsValue) -> Result<(Options, Tags), Error> {
     Ok((options, read_tags(&field)?))
 }
 
+/// `options.onProgress`: a function, or `None` when absent. Read apart from [`read_options`],
+/// whose `Options` stay plain data (the evaluator and `predictCounts` ignore the key).
+pub(super) fn read_on_progress(value: &JsValue) -> Result<Option<Function>, Error> {
+    if !value.is_object() {
+        return Ok(None);
+    }
+    let field = Reflect::get(value, &JsValue::from_str("onProgress"))
+        .map_err(|e| option_error(format!("reading options.onProgress threw {}", describe(&e))))?;
+    if field.is_undefined() {
+        return Ok(None);
+    }
+    match field.dyn_into::<Function>() {
+        Ok(function) => Ok(Some(function)),
+        Err(other) => Err(option_error(format!(
+            "onProgress must be a function such as ({{ level, levels }}) => console.log(level, levels), got {}",
+            describe(&other)
+        ))),
+    }
+}
+
 /// The tag options: `creases`, `corners`, `holes`, `creaseMethod`, `smoothTriangles`.
 pub(super) fn read_tags(field: &dyn Fn(&str) -> Result<JsValue, Error>) -> Result<Tags, Error> {
     let mut tags = Tags::default();

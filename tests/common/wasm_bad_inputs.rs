@@ -116,7 +116,12 @@ fn module_still_works(after: &str) {
 }
 
 /// The message of a call that must fail, checked for every fragment.
-fn expect_error(name: &str, what: &str, result: Result<JsValue, JsError>, fragments: &[&str]) {
+fn expect_error<E: Into<JsValue>>(
+    name: &str,
+    what: &str,
+    result: Result<JsValue, E>,
+    fragments: &[&str],
+) {
     match result {
         Ok(value) => panic!("{name}: {what} succeeded: {value:?}"),
         Err(error) => {

@@ -4,7 +4,7 @@
 
 use js_sys::{Array, Float32Array, Object, Reflect, Uint32Array};
 use subsurf::wasm::{read_obj, version, write_obj};
-use wasm_bindgen::{JsCast, JsError, JsValue};
+use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test;
 
 // ---------------------------------------------------------------------------------------------
@@ -46,7 +46,7 @@ fn object(fields: &[(&str, JsValue)]) -> JsValue {
 }
 
 /// `subsurf::wasm::subdivide` without `into`, as most cases call it.
-fn subdivide(mesh: &JsValue, options: &JsValue) -> Result<JsValue, JsError> {
+fn subdivide(mesh: &JsValue, options: &JsValue) -> Result<JsValue, JsValue> {
     subsurf::wasm::subdivide(mesh, options, &JsValue::UNDEFINED)
 }
 
@@ -72,21 +72,22 @@ fn u32s(object: &JsValue, key: &str) -> Vec<u32> {
         .to_vec()
 }
 
-fn ok(result: Result<JsValue, JsError>) -> JsValue {
+fn ok<E: Into<JsValue>>(result: Result<JsValue, E>) -> JsValue {
     match result {
         Ok(value) => value,
         Err(error) => panic!("unexpected error: {}", message(error)),
     }
 }
 
-fn message(error: JsError) -> String {
+/// The message of a thrown `Error` (`subdivide` throws `JsValue`s, the other calls `JsError`s).
+fn message<E: Into<JsValue>>(error: E) -> String {
     let value: JsValue = error.into();
     let error = value.dyn_into::<js_sys::Error>().expect("a JS Error object");
     error.message().into()
 }
 
 /// The message of the `Error` the call threw; fails the test when it did not throw.
-fn thrown<T: std::fmt::Debug>(result: Result<T, JsError>) -> String {
+fn thrown<T: std::fmt::Debug, E: Into<JsValue>>(result: Result<T, E>) -> String {
     match result {
         Ok(value) => panic!("expected an error, got {value:?}"),
         Err(error) => message(error),
@@ -572,7 +573,7 @@ fn bad_obj_tags_are_thrown_with_the_line() {
 
 #[wasm_bindgen_test]
 fn errors_are_js_errors_and_the_module_keeps_working() {
-    let error: JsValue = subdivide(&cube(), &levels_typo()).unwrap_err().into();
+    let error: JsValue = subdivide(&cube(), &levels_typo()).unwrap_err();
     assert!(error.is_instance_of::<js_sys::Error>());
     let (p, mut i, s) = cube_arrays();
     i[0] = 1000;
@@ -602,3 +603,6 @@ mod fvar;
 
 #[path = "wasm_limit.rs"]
 mod limit;
+
+#[path = "wasm_progress.rs"]
+mod progress;

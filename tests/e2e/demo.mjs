@@ -12,7 +12,7 @@
 // crease and changes the surface (on a built-in mesh too), that meshes with UVs (built-in, or an
 // OBJ with vt) show the checker texture with their vertices split along the seams, that the
 // fvarLinear menu changes the picture, that the memory guard refuses a level with a message, that a big job still running is
-// superseded by a later change while the page stays responsive, that the OBJ download holds the
+// superseded by a later change while the page stays responsive and shows the levels done, that the OBJ download holds the
 // shown mesh, and that mouse and touch move the camera; that the surface is shaded with the
 // library's limit normals and the limit surface checkbox gives the library's limit (disabled for
 // Doo-Sabin); that animate moves the surface every frame through one evaluator (frames equal
@@ -604,6 +604,8 @@ async function run() {
     assert.equal(race.maxLevel, 9, 'dodecahedron under a 4,000,000-face guard: level 9 (3,932,160 faces) is the highest');
     assert.ok(race.stillBusy, 'the big job was still running 400 ms later (the test needs a job that long)');
     assert.ok(race.busyShown, 'the busy indicator is shown while a long job runs');
+    // Levels 1-7 of the 9 take a few milliseconds: by now subdivide has told several of them.
+    assert.match(race.busyText, /level [1-9]\/9 ·/, 'the busy indicator shows the levels done (subsurf/worker progress)');
     assert.ok(race.worstLateness < 150, `the page stayed responsive (timers at most ${race.worstLateness.toFixed(0)} ms late)`);
     assert.equal(race.superseded, 1, 'the big job was superseded');
     assert.ok(!race.seen.includes(String(60 * 4 ** (race.maxLevel - 1))), 'the superseded result never reached the screen');

@@ -4,8 +4,11 @@
 // `npm pack`s pkg/ once, then for each consumer makes a fresh project in a temporary folder,
 // `npm install`s the tarball there (and `three`, the repo's pinned version, where subsurf/three is
 // used), builds it with no configuration of ours, and checks that it subdivides a cube with no
-// init() call: Catmull-Clark level 2 gives 98 vertices and 96 quads, and subsurf/three's
-// subdivideGeometry of the cube's 12 triangles (quads: true) gives 98 vertices, 192 triangles.
+// init() call: Catmull-Clark level 2 gives 98 vertices and 96 quads, subsurf/three's
+// subdivideGeometry of the cube's 12 triangles (quads: true) gives 98 vertices, 192 triangles,
+// and subsurf/worker gives the main thread's result byte for byte, telling levels 1 and 2 (in
+// Node through worker_threads; in the bundlers with no configuration: the worker script and the
+// .wasm are found through their `new URL(..., import.meta.url)`).
 //   node     a Node project with only the tarball: import { subdivide } from 'subsurf'
 //   vite     a Vite app (vite build; the repo's pinned vite), served and opened in Chromium; and
 //            the same app under Vite's dev server (`vite`, dependency pre-bundling included)
@@ -31,7 +34,7 @@ const bin = (name) => join(root, 'node_modules', '.bin', name);
 const keep = process.argv.includes('--keep');
 const threeVersion = JSON.parse(readFileSync(join(root, 'node_modules', 'three', 'package.json'), 'utf8')).version;
 const version = JSON.parse(readFileSync(join(pkgDir, 'package.json'), 'utf8')).version;
-const EXPECTED = { version, vertices: 98, faces: 96, geometryVertices: 98, geometryTriangles: 192, initAgain: 24 };
+const EXPECTED = { version, vertices: 98, faces: 96, geometryVertices: 98, geometryTriangles: 192, initAgain: 24, worker: 'same', workerProgress: '1,2' };
 
 const scratch = mkdtempSync(join(tmpdir(), 'subsurf-consumers-'));
 process.on('exit', () => {
@@ -71,11 +74,25 @@ const CUBE = `const cube = {
 const out = subdivide(cube, { levels: 2 });
 const result = { version: version(), vertices: out.positions.length / 3, faces: out.faceSizes.length };
 `;
+// subsurf/worker: the same cube in a worker (Web Worker, or worker_threads in Node), compared
+// with the main thread's result byte for byte, with the levels its progress told.
+const WORKER = `const worker = createWorker();
+const workerLevels = [];
+const sameBytes = (a, b) => ['positions', 'indices', 'faceSizes', 'triangles'].every((k) => {
+  const [x, y] = [new Uint8Array(a[k].buffer), new Uint8Array(b[k].buffer)];
+  return x.length === y.length && x.length > 0 && x.every((v, i) => v === y[i]);
+});
+const inWorker = worker.subdivide(cube, { levels: 2 }, { onProgress: (p) => workerLevels.push(p.level) }).then((w) => {
+  worker.terminate();
+  return { worker: sameBytes(w, out) ? 'same' : 'different', workerProgress: workerLevels.join(',') };
+}, (error) => ({ worker: String(error) }));
+`;
 const APP = `import init, { subdivide, version } from 'subsurf';
 import { subdivideGeometry } from 'subsurf/three';
+import { createWorker } from 'subsurf/worker';
 import { BufferAttribute, BufferGeometry } from 'three';
 
-${CUBE}
+${CUBE}${WORKER}
 // The cube as three.js has it: 12 triangles, indexed; quads: true joins them back into quads.
 const triangles = [];
 for (let f = 0; f < 6; f++) {
@@ -89,8 +106,9 @@ const smooth = subdivideGeometry(geometry, { levels: 2, quads: true });
 result.geometryVertices = smooth.getAttribute('position').count;
 result.geometryTriangles = smooth.index.count / 3;
 
-init().then(() => {
+Promise.all([init(), inWorker]).then(([, fromWorker]) => {
   result.initAgain = subdivide(cube, { levels: 1 }).faceSizes.length;
+  Object.assign(result, fromWorker);
   document.getElementById('out').textContent = JSON.stringify(result);
   window.__subsurf = result;
 }, (error) => { window.__subsurf = { error: String(error) }; });
@@ -191,15 +209,17 @@ await part('npm pack', () => {
   const [info] = JSON.parse(run('npm', ['pack', pkgDir, '--pack-destination', scratch, '--json', '--loglevel=error'], scratch));
   tarball = join(scratch, info.filename);
   const files = info.files.map((f) => f.path);
-  for (const file of ['auto.js', 'three-auto.js', 'subsurf_bg.wasm', 'node.js', 'package.json']) assert.ok(files.includes(file), `tarball has ${file}`);
+  for (const file of ['auto.js', 'three-auto.js', 'subsurf_bg.wasm', 'node.js', 'package.json', 'worker.js', 'worker-node.js', 'worker-client.js',
+    'worker-thread.js', 'worker-script.js', 'worker-script-node.js', 'worker.d.ts', 'worker-thread.d.ts']) assert.ok(files.includes(file), `tarball has ${file}`);
 });
 
 if (tarball) {
   await part('node: fresh project, import from subsurf with no init', () => {
     const dir = project('node', [tarball]);
-    writeFileSync(join(dir, 'index.js'), `import { subdivide, version } from 'subsurf';\n${CUBE}console.log(JSON.stringify(result));\n`);
+    writeFileSync(join(dir, 'index.js'), `import { subdivide, version } from 'subsurf';\nimport { createWorker } from 'subsurf/worker';\n` +
+      `${CUBE}${WORKER}console.log(JSON.stringify({ ...result, ...(await inWorker) }));\n`);
     const printed = JSON.parse(run(process.execPath, ['index.js'], dir));
-    assert.deepEqual(printed, { version, vertices: 98, faces: 96 });
+    assert.deepEqual(printed, { version, vertices: 98, faces: 96, worker: 'same', workerProgress: '1,2' });
   });
 
   // Vite 8 runs on Node ^20.19 or >=22.12 (Debian 12's Node 18 cannot run it).
@@ -239,6 +259,7 @@ if (tarball) {
     const imports = {
       subsurf: './node_modules/subsurf/auto.js',
       'subsurf/three': './node_modules/subsurf/three-auto.js',
+      'subsurf/worker': './node_modules/subsurf/worker.js',
       three: './node_modules/three/build/three.module.js',
     };
     writeFileSync(join(dir, 'index.html'), `<!doctype html><meta charset="utf-8"><title>subsurf in a plain page</title>${REPORT_ERRORS}

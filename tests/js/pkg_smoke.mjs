@@ -4,7 +4,7 @@
 // user would (`subsurf/node`, `initSync`, `await init`), subdivides a cube and checks counts,
 // positions, errors, BaseMesh and `into` through the generated glue, and the TypeScript
 // declarations: their text, and `tsc` (package.json's pinned version) on a consumer file,
-// tests/js/types_check.ts. Exits non-zero on the first failure.
+// tests/js/types_check.ts (and worker_types_check.ts). Exits non-zero on the first failure.
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { cpSync, mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
@@ -39,6 +39,8 @@ check('package.json', () => {
   assert.equal(pkg.exports['.'].default, './auto.js', "'.' initialises itself elsewhere (top-level await)");
   assert.deepEqual(pkg.exports['./init'], { types: './subsurf.d.ts', default: './subsurf.js' });
   assert.deepEqual(pkg.exports['./webgpu'], { types: './webgpu.d.ts', default: './webgpu.js' });
+  assert.deepEqual(pkg.exports['./worker'], { types: './worker.d.ts', node: './worker-node.js', default: './worker.js' });
+  assert.deepEqual(pkg.exports['./worker-thread'], { types: './worker-thread.d.ts', default: './worker-thread.js' });
 });
 
 const scratch = mkdtempSync(join(tmpdir(), 'subsurf-smoke-'));
@@ -210,7 +212,7 @@ check('subsurf.d.ts', () => {
 // `esnext.disposable` lib because wasm-bindgen's classes declare [Symbol.dispose] (TypeScript
 // 5.2 or later); and the `tsc --init` default, skipLibCheck on, with an older lib.
 writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
-for (const file of ['types_check.ts', 'webgpu_types_plain.ts', 'webgpu_types_check.ts']) {
+for (const file of ['types_check.ts', 'webgpu_types_plain.ts', 'webgpu_types_check.ts', 'worker_types_check.ts']) {
   cpSync(join(root, 'tests', 'js', file), join(scratch, file));
 }
 for (const [skipLibCheck, lib] of [[false, ['es2022', 'esnext.disposable', 'dom']], [true, ['es2022', 'dom']]]) {
@@ -218,8 +220,10 @@ for (const [skipLibCheck, lib] of [[false, ['es2022', 'esnext.disposable', 'dom'
     const compilerOptions = {
       strict: true, noEmit: true, skipLibCheck, target: 'es2022', module: 'nodenext', moduleResolution: 'nodenext', lib, types: [],
     };
-    // subsurf/webgpu without WebGPU typings (its stand-in types) goes with the main check.
-    writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files: ['types_check.ts', 'webgpu_types_plain.ts'] }));
+    // subsurf/webgpu without WebGPU typings (its stand-in types) and subsurf/worker go with the
+    // main check.
+    const files = ['types_check.ts', 'webgpu_types_plain.ts', 'worker_types_check.ts'];
+    writeFileSync(join(scratch, 'tsconfig.json'), JSON.stringify({ compilerOptions, files }));
     const tsc = spawnSync(join(root, 'node_modules', '.bin', 'tsc'), ['-p', scratch], { encoding: 'utf8' });
     assert.equal(tsc.status, 0, `tsc failed:\n${tsc.stdout}${tsc.stderr}`);
   });
