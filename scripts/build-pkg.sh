@@ -36,9 +36,10 @@ AFTER=$(size "$BG")
 # entry loads it synchronously: import { subdivide } from 'subsurf/node'), node.d.ts, webgpu.js and
 # webgpu.d.ts (subsurf/webgpu: stencil tables evaluated by a WebGPU compute shader), three.js,
 # three-node.js and three.d.ts (subsurf/three: subdivideGeometry for three.js; three-node.js is
-# its Node entry, which loads the .wasm through node.js first), and the
+# its Node entry, which loads the .wasm through node.js first), geometry.js (subsurf/three's
+# array-level core, typed arrays in and out, which three.js imports), and the
 # package.json and README.md templates, which get the crate's version and description here.
-cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts "$OUT/"
+cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts js/geometry.js "$OUT/"
 
 VERSION=$(cargo metadata --no-deps --format-version 1 |
   node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const p=JSON.parse(s).packages.find(p=>p.name==="subsurf");process.stdout.write(p.version)})')

@@ -37,7 +37,7 @@ impl TriangleEdges {
     /// The edges of the triangles `corners` (three vertices per triangle). Errors when the
     /// corner count is not a multiple of 3 or does not fit 32-bit half-edge numbers.
     pub fn new(corners: &[u32]) -> Result<TriangleEdges> {
-        if corners.len() % 3 != 0 {
+        if !corners.len().is_multiple_of(3) {
             return Err(Error::mesh(format!(
                 "the triangle list has {} corners, which is not a multiple of 3; give three \
                  vertices per triangle",

@@ -137,7 +137,7 @@ fn check(
 ) -> Result<()> {
     let triangles = corners.len() / 3;
     let wrong = |what: String| Err(Error::mesh(format!("triangle faces: {what}")));
-    if positions.len() % 3 != 0 || corners.len() % 3 != 0 {
+    if !positions.len().is_multiple_of(3) || !corners.len().is_multiple_of(3) {
         return wrong(format!(
             "{} position coordinates and {} corners; give x, y, z per vertex and three corners \
              per triangle",

@@ -50,6 +50,24 @@ pub struct Polygons {
     pub first_triangles: Vec<u32>,
 }
 
+impl Polygons {
+    /// Data given per triangle corner (`3 t + j`), one value per polygon corner: the corners'
+    /// vertices, their input vertices. Errors when `per_corner` misses a corner.
+    pub fn gather(&self, per_corner: &[u32]) -> Result<Vec<u32>> {
+        self.corners
+            .iter()
+            .map(|&c| per_corner.get(c as usize).copied())
+            .collect::<Option<Vec<u32>>>()
+            .ok_or_else(|| {
+                Error::mesh(format!(
+                    "polygons: {} values given per triangle corner, but the polygons use corner {}",
+                    per_corner.len(),
+                    self.corners.iter().max().copied().unwrap_or_default()
+                ))
+            })
+    }
+}
+
 /// Every triangle of a list of `triangles` as a polygon of its own.
 pub fn triangle_polygons(triangles: usize) -> Polygons {
     Polygons {
@@ -110,8 +128,8 @@ pub fn join_quads(
     let vertex = |h: usize| corners[h];
     let mut candidates = Vec::new();
     let mut errors = Vec::new();
-    for e in 0..edges.len() {
-        if marks[e] != SMOOTH {
+    for (e, &mark) in marks.iter().enumerate() {
+        if mark != SMOOTH {
             continue;
         }
         let Some((t1, t2)) = edges.triangles(e) else { continue };
@@ -209,7 +227,7 @@ fn check_join(
     let triangles = corners.len() / 3;
     let vertices = positions.len() / 3;
     let wrong = |what: String| Err(Error::mesh(format!("joining quads: {what}")));
-    if corners.len() % 3 != 0 || edges.edge_of.len() != corners.len() {
+    if !corners.len().is_multiple_of(3) || edges.edge_of.len() != corners.len() {
         return wrong(format!(
             "{} corners and edges of {} half-edges; give the edges of these triangles \
              (TriangleEdges::new(corners))",

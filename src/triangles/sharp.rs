@@ -69,7 +69,9 @@ pub fn normal_split_edges(
             return false;
         }
         let (nu, nv) = (normal(u), normal(v));
-        !(nu.dot(nv) >= cos_limit * nu.length() * nv.length())
+        // Not `<`: a NaN normal differs from every other.
+        let within = nu.dot(nv) >= cos_limit * nu.length() * nv.length();
+        !within
     };
     for (e, mark) in marks.iter_mut().enumerate() {
         if !edges.opposite[e] || edges.h1[e] == NO_HALF_EDGE {
@@ -95,7 +97,7 @@ pub fn tagged_edges(
     sharpness: &[f32],
     marks: &mut [u8],
 ) -> Result<()> {
-    if pairs.len() % 2 != 0 || sharpness.len() != pairs.len() / 2 {
+    if !pairs.len().is_multiple_of(2) || sharpness.len() != pairs.len() / 2 {
         return Err(Error::InvalidTag(format!(
             "creases: {} vertices and {} sharpness values; give vertex pairs and one sharpness \
              per pair",
@@ -147,14 +149,13 @@ mod tests {
         // Flat-shaded: four vertices per face, each with the face's normal.
         let (cube_positions, cube_corners) = cube();
         let (mut positions, mut corners, mut normals) = (Vec::new(), Vec::new(), Vec::new());
-        for (t, tri) in cube_corners.chunks_exact(3).enumerate() {
+        for tri in cube_corners.chunks_exact(3) {
             let n = triangle_normals(&cube_positions, tri)[0];
             for &v in tri {
                 corners.push((positions.len() / 3) as u32);
                 positions.extend_from_slice(&cube_positions[3 * v as usize..3 * v as usize + 3]);
                 normals.extend_from_slice(&[n.x as f32, n.y as f32, n.z as f32]);
             }
-            let _ = t;
         }
         let welded = weld_triangles(&positions, &corners, 0.0).unwrap();
         let edges = TriangleEdges::new(&welded.corners).unwrap();

@@ -40,8 +40,8 @@ pub fn smoothing_fans(edges: &TriangleEdges, marks: &[u8]) -> Result<Vec<u32>> {
             parent[x.max(y) as usize] = x.min(y);
         }
     };
-    for e in 0..edges.len() {
-        if splits_normals(marks[e]) || !edges.opposite[e] {
+    for (e, &mark) in marks.iter().enumerate() {
+        if splits_normals(mark) || !edges.opposite[e] {
             continue;
         }
         // h runs a -> b (its corner is at a), g runs b -> a (its corner is at b).
@@ -87,7 +87,7 @@ pub fn side_normals(
         ));
     }
     let drawn = normals.len() / 3;
-    if normals.len() % 3 != 0 {
+    if !normals.len().is_multiple_of(3) {
         return wrong(format!(
             "{} normal coordinates; give x, y, z per drawn vertex",
             normals.len()

@@ -86,7 +86,7 @@ pub fn weld_triangles(positions: &[f32], corners: &[u32], distance: f64) -> Resu
 }
 
 fn check(positions: &[f32], corners: &[u32], distance: f64) -> Result<()> {
-    if positions.len() % 3 != 0 {
+    if !positions.len().is_multiple_of(3) {
         return Err(Error::mesh(format!(
             "positions has {} numbers, which is not a multiple of 3; give x, y, z per vertex",
             positions.len()
@@ -105,7 +105,7 @@ fn check(positions: &[f32], corners: &[u32], distance: f64) -> Result<()> {
             positions[i]
         )));
     }
-    if corners.len() % 3 != 0 {
+    if !corners.len().is_multiple_of(3) {
         return Err(Error::mesh(format!(
             "the triangle list has {} corners, which is not a multiple of 3; give three \
              vertices per triangle",
