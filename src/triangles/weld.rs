@@ -166,55 +166,88 @@ fn cell_order(a: &Cell, b: &Cell) -> Ordering {
 /// `distance`, numbered by sorting their coordinates; a position's candidates are the centres
 /// in the 27 cells around its own, each cell's kept as a list with the latest first.
 fn distance_representatives(positions: &[f32], representative: &[u32], distance: f64) -> Vec<u32> {
+    const NONE: u32 = u32::MAX;
     let n = representative.len();
     let point = |v: usize| [0, 1, 2].map(|k| f64::from(positions[3 * v + k]));
     let cell_of_point = |p: [f64; 3]| p.map(|x| (x / distance).floor() + 0.0);
-    let distinct: Vec<usize> = (0..n).filter(|&v| representative[v] as usize == v).collect();
-    let mut cells: Vec<Cell> = distinct.iter().map(|&v| cell_of_point(point(v))).collect();
-    cells.sort_unstable_by(cell_order);
-    cells.dedup_by(|a, b| cell_order(a, b) == Ordering::Equal);
+    let mut by_cell: Vec<(Cell, u32)> = (0..n)
+        .filter(|&v| representative[v] as usize == v)
+        .map(|v| (cell_of_point(point(v)), v as u32))
+        .collect();
+    by_cell.sort_unstable_by(|a, b| cell_order(&a.0, &b.0));
+    let mut cells: Vec<Cell> = Vec::new();
+    let mut cell_of = vec![NONE; n];
+    for &(cell, v) in &by_cell {
+        if cells.last().is_none_or(|last| cell_order(last, &cell) != Ordering::Equal) {
+            cells.push(cell);
+        }
+        cell_of[v as usize] = (cells.len() - 1) as u32;
+    }
+    let m = cells.len();
 
-    const NONE: u32 = u32::MAX;
-    let mut head = vec![NONE; cells.len()];
+    // The cells around cell i with x + dx, y + dy are a run of the sorted list from the first
+    // one not below (x + dx, y + dy, z - 1). Adding the offsets keeps the list's order, so one
+    // merge-like sweep per offset finds every run's start (no search per vertex); a rounding
+    // that breaks the order (cells beyond 2^53) falls back to a binary search.
+    const OFFSETS: [(f64, f64); 9] = [
+        (-1., -1.),
+        (-1., 0.),
+        (-1., 1.),
+        (0., -1.),
+        (0., 0.),
+        (0., 1.),
+        (1., -1.),
+        (1., 0.),
+        (1., 1.),
+    ];
+    let mut run_start = vec![0u32; OFFSETS.len() * m];
+    for (o, &(dx, dy)) in OFFSETS.iter().enumerate() {
+        let mut j = 0;
+        let mut previous: Option<Cell> = None;
+        for (i, cell) in cells.iter().enumerate() {
+            let low = [cell[0] + dx, cell[1] + dy, cell[2] - 1.0];
+            if previous.is_some_and(|p| cell_order(&low, &p) == Ordering::Less) {
+                j = cells.partition_point(|c| cell_order(c, &low) == Ordering::Less);
+            }
+            while j < m && cell_order(&cells[j], &low) == Ordering::Less {
+                j += 1;
+            }
+            run_start[o * m + i] = j as u32;
+            previous = Some(low);
+        }
+    }
+
+    let mut head = vec![NONE; m];
     let mut next_in_cell = vec![NONE; n];
     let mut centre: Vec<u32> = (0..n as u32).collect();
     let limit = distance * distance;
-    for &v in &distinct {
+    for v in (0..n).filter(|&v| cell_of[v] != NONE) {
         let p = point(v);
-        let own = cell_of_point(p);
+        let c = cell_of[v] as usize;
+        let own = cells[c];
         let (mut best, mut best_distance) = (NONE, f64::INFINITY);
-        for dx in [-1.0, 0.0, 1.0] {
-            for dy in [-1.0, 0.0, 1.0] {
-                let (x, y) = (own[0] + dx, own[1] + dy);
-                // The cells (x, y, z - 1 ..= z + 1) are neighbours in the sorted list.
-                let low = [x, y, own[2] - 1.0];
-                let mut i = cells.partition_point(|c| cell_order(c, &low) == Ordering::Less);
-                while i < cells.len()
-                    && cells[i][0] == x
-                    && cells[i][1] == y
-                    && cells[i][2] <= own[2] + 1.0
-                {
-                    let mut u = head[i];
-                    while u != NONE {
-                        let q = point(u as usize);
-                        let d =
-                            (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
-                        if d <= limit && d < best_distance {
-                            best = u;
-                            best_distance = d;
-                        }
-                        u = next_in_cell[u as usize];
+        for (o, &(dx, dy)) in OFFSETS.iter().enumerate() {
+            let (x, y) = (own[0] + dx, own[1] + dy);
+            let mut i = run_start[o * m + c] as usize;
+            while i < m && cells[i][0] == x && cells[i][1] == y && cells[i][2] <= own[2] + 1.0 {
+                let mut u = head[i];
+                while u != NONE {
+                    let q = point(u as usize);
+                    let d = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
+                    if d <= limit && d < best_distance {
+                        best = u;
+                        best_distance = d;
                     }
-                    i += 1;
+                    u = next_in_cell[u as usize];
                 }
+                i += 1;
             }
         }
         if best != NONE {
             centre[v] = best;
         } else {
-            let i = cells.partition_point(|c| cell_order(c, &own) == Ordering::Less);
-            next_in_cell[v] = head[i];
-            head[i] = v as u32;
+            next_in_cell[v] = head[c];
+            head[c] = v as u32;
         }
     }
     centre
@@ -291,6 +324,56 @@ mod tests {
         assert_eq!(welded.kept, [0]);
         let none = weld_triangles(&positions, &[1, 1, 2], 0.0).unwrap();
         assert!(none.kept.is_empty() && none.corners.is_empty());
+    }
+
+    #[test]
+    fn the_grid_finds_what_a_scan_of_every_centre_finds() {
+        // Random points (no exact ties), some negative, some on a coarse lattice so that many
+        // share cells; the rule checked by brute force: the nearest earlier centre within d.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut random = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = 2000;
+        let positions: Vec<f32> = (0..3 * n).map(|_| (random() * 4.0 - 2.0) as f32).collect();
+        let corners: Vec<u32> = (0..n as u32).flat_map(|v| [v, v, v]).collect();
+        for distance in [0.05, 0.2, 0.7] {
+            let welded = weld_triangles(&positions, &corners, distance).unwrap();
+            let point = |v: usize| [0, 1, 2].map(|k| f64::from(positions[3 * v + k]));
+            let mut centres: Vec<usize> = Vec::new();
+            let mut cluster = vec![0usize; n];
+            for v in 0..n {
+                let p = point(v);
+                let nearest = centres
+                    .iter()
+                    .map(|&c| {
+                        let q = point(c);
+                        ((0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>(), c)
+                    })
+                    .filter(|&(d, _)| d <= distance * distance)
+                    .min_by(|a, b| a.0.total_cmp(&b.0));
+                cluster[v] = match nearest {
+                    Some((_, c)) => cluster[c],
+                    None => {
+                        centres.push(v);
+                        v
+                    }
+                };
+            }
+            // Same partition: welded ids are numbered by first use, clusters by centre.
+            for u in 0..n {
+                for v in [u / 2, (u * 7) % n, (u + 1) % n] {
+                    assert_eq!(
+                        welded.weld_of[u] == welded.weld_of[v],
+                        cluster[u] == cluster[v],
+                        "distance {distance}, vertices {u} and {v}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
