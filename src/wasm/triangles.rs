@@ -34,8 +34,8 @@ pub fn weld_triangles(
     #[wasm_bindgen(unchecked_param_type = "Uint32Array")] index: &JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "number")] weld: &JsValue,
 ) -> JsResult<JsValue> {
-    let positions = f32_argument(positions, "positions").map_err(js_error)?;
-    let index = u32_argument(index, "index").map_err(js_error)?;
+    let positions = f32_argument(positions, "weldTriangles: positions").map_err(js_error)?;
+    let index = u32_argument(index, "weldTriangles: index").map_err(js_error)?;
     let distance = if weld.is_undefined() {
         0.0
     } else {
@@ -68,10 +68,11 @@ pub fn triangle_faces(
     #[wasm_bindgen(unchecked_optional_param_type = "TriangleFacesOptions")] options: &JsValue,
 ) -> JsResult<JsValue> {
     let read = || -> Result<_, Error> {
-        object_argument(input, "triangles", &TRIANGLE_KEYS)?;
-        let positions = f32_argument(&get(input, "positions")?, "positions")?;
-        let corners = u32_argument(&get(input, "corners")?, "corners")?;
-        let input_corners = u32_argument(&get(input, "inputCorners")?, "inputCorners")?;
+        object_argument(input, "triangleFaces: triangles", &TRIANGLE_KEYS)?;
+        let positions = f32_argument(&get(input, "positions")?, "triangleFaces: positions")?;
+        let corners = u32_argument(&get(input, "corners")?, "triangleFaces: corners")?;
+        let input_corners =
+            u32_argument(&get(input, "inputCorners")?, "triangleFaces: inputCorners")?;
         Ok((positions, corners, input_corners))
     };
     let (positions, corners, input_corners) = read().map_err(js_error)?;
@@ -102,15 +103,16 @@ pub fn triangle_faces(
 pub fn side_normals(
     #[wasm_bindgen(unchecked_param_type = "SubdivideMesh")] mesh: &JsValue,
     #[wasm_bindgen(unchecked_param_type = "Uint32Array")] sides: &JsValue,
-    side_count: u32,
-    #[wasm_bindgen(unchecked_param_type = "Uint32Array")] drawn_indices: &JsValue,
+    #[wasm_bindgen(js_name = sideCount)] side_count: u32,
+    #[wasm_bindgen(js_name = drawnIndices, unchecked_param_type = "Uint32Array")]
+    drawn_indices: &JsValue,
     #[wasm_bindgen(unchecked_param_type = "Float32Array")] normals: &JsValue,
 ) -> JsResult<Float32Array> {
     let read = || -> Result<_, Error> {
         let mesh = read_mesh(mesh)?;
-        let sides = u32_argument(sides, "sides")?;
-        let drawn = u32_argument(drawn_indices, "drawnIndices")?;
-        let normals = f32_argument(normals, "normals")?;
+        let sides = u32_argument(sides, "sideNormals: sides")?;
+        let drawn = u32_argument(drawn_indices, "sideNormals: drawnIndices")?;
+        let normals = f32_argument(normals, "sideNormals: normals")?;
         triangles::side_normals(&mesh, &sides, side_count as usize, &drawn, &normals)
     };
     let normals = read().map_err(js_error)?;
@@ -137,7 +139,7 @@ impl FaceArguments {
         if value.is_undefined() || value.is_null() {
             return Ok(out);
         }
-        object_argument(value, "options", &FACE_OPTION_KEYS)?;
+        object_argument(value, "triangleFaces: options", &FACE_OPTION_KEYS)?;
         let field = |key: &str| {
             let found = get(value, key)?;
             Ok::<_, Error>((!found.is_undefined() && !found.is_null()).then_some(found))
@@ -153,7 +155,8 @@ impl FaceArguments {
             out.crease_angle = Some(angle(&a, "creaseAngle")?);
         }
         if let Some(normals) = field("splitNormals")? {
-            out.split_normals = Some(f32_argument(&normals, "options.splitNormals")?);
+            out.split_normals =
+                Some(f32_argument(&normals, "triangleFaces: options.splitNormals")?);
         }
         if let Some(creases) = field("creases")? {
             let (edges, sharpness) = read_sharpness(&creases, "creases", "edges")?;
@@ -183,13 +186,14 @@ impl FaceArguments {
             }
         }
         if let Some(groups) = field("groups")? {
-            out.groups = Some(u32_argument(&groups, "options.groups")?);
+            out.groups = Some(u32_argument(&groups, "triangleFaces: options.groups")?);
         }
         if let Some(classes) = field("cornerClasses")? {
-            out.corner_classes = Some(u32_argument(&classes, "options.cornerClasses")?);
+            out.corner_classes =
+                Some(u32_argument(&classes, "triangleFaces: options.cornerClasses")?);
         }
         if let Some(holes) = field("holes")? {
-            out.holes = u32_argument(&holes, "options.holes")?;
+            out.holes = u32_argument(&holes, "triangleFaces: options.holes")?;
         }
         if let Some(sides) = field("sides")? {
             out.sides = sides.as_bool().ok_or_else(|| {
@@ -226,16 +230,27 @@ fn object_argument(value: &JsValue, name: &str, keys: &[&str]) -> Result<(), Err
         .map_err(|m| option_error(format!("{name}: {m}")))
 }
 
+/// `field` ("function: name") as a copy, when it is a Float32Array.
 fn f32_argument(value: &JsValue, field: &str) -> Result<Vec<f32>, Error> {
     if typed_array_kind(value).as_deref() != Some("Float32Array") {
-        return Err(wrong_array_type(field, "Float32Array", value));
+        return Err(wrong_type(field, "Float32Array", value));
     }
     copy_f32(value, field)
 }
 
+/// `field` ("function: name") as a copy, when it is a Uint32Array.
 fn u32_argument(value: &JsValue, field: &str) -> Result<Vec<u32>, Error> {
     if typed_array_kind(value).as_deref() != Some("Uint32Array") {
-        return Err(wrong_array_type(field, "Uint32Array", value));
+        return Err(wrong_type(field, "Uint32Array", value));
     }
     copy_u32(value, field)
+}
+
+fn wrong_type(field: &str, expected: &str, got: &JsValue) -> Error {
+    let hint = if is_array(got) || is_typed_array(got) {
+        format!("; convert it with new {expected}(array)")
+    } else {
+        String::new()
+    };
+    Error::InvalidMesh(format!("{field} must be a {expected}, got {}{hint}", describe(got)))
 }
