@@ -15,20 +15,20 @@ pub const NO_HALF_EDGE: u32 = u32::MAX;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriangleEdges {
     /// The lower vertex of each edge.
-    pub a: Vec<u32>,
+    pub(crate) a: Vec<u32>,
     /// The higher vertex of each edge.
-    pub b: Vec<u32>,
+    pub(crate) b: Vec<u32>,
     /// How many half-edges (triangle sides) lie on each edge.
-    pub uses: Vec<u32>,
+    pub(crate) uses: Vec<u32>,
     /// The first half-edge on each edge.
-    pub h0: Vec<u32>,
+    pub(crate) h0: Vec<u32>,
     /// The second half-edge on each edge, or [`NO_HALF_EDGE`].
-    pub h1: Vec<u32>,
+    pub(crate) h1: Vec<u32>,
     /// The edge of each half-edge.
-    pub edge_of: Vec<u32>,
+    pub(crate) edge_of: Vec<u32>,
     /// Whether each edge has exactly two half-edges running opposite ways: an edge between two
     /// consistently wound triangles of a manifold surface.
-    pub opposite: Vec<bool>,
+    pub(crate) opposite: Vec<bool>,
     /// (a, b) of each edge as `a << 32 | b`, ascending, with its edge: for [`Self::find`].
     by_pair: Vec<(u64, u32)>,
 }
@@ -101,6 +101,60 @@ impl TriangleEdges {
         Ok(TriangleEdges { a, b, uses, h0, h1, edge_of, opposite, by_pair })
     }
 
+    /// The lower vertex of each edge.
+    pub fn a(&self) -> &[u32] {
+        &self.a
+    }
+
+    /// The higher vertex of each edge.
+    pub fn b(&self) -> &[u32] {
+        &self.b
+    }
+
+    /// How many half-edges (triangle sides) lie on each edge.
+    pub fn uses(&self) -> &[u32] {
+        &self.uses
+    }
+
+    /// The first half-edge (triangle corner `3 t + j`, from that corner to the next) on each
+    /// edge.
+    pub fn h0(&self) -> &[u32] {
+        &self.h0
+    }
+
+    /// The second half-edge on each edge, or [`NO_HALF_EDGE`].
+    pub fn h1(&self) -> &[u32] {
+        &self.h1
+    }
+
+    /// The edge of each half-edge.
+    pub fn edge_of(&self) -> &[u32] {
+        &self.edge_of
+    }
+
+    /// Whether each edge lies between two consistently wound triangles (exactly two half-edges,
+    /// running opposite ways).
+    pub fn opposite(&self) -> &[bool] {
+        &self.opposite
+    }
+
+    /// The number of half-edges (triangle corners) the edges were found from.
+    pub fn num_half_edges(&self) -> usize {
+        self.edge_of.len()
+    }
+
+    /// Errors unless `marks` has one entry per edge.
+    pub(crate) fn check_marks(&self, marks: &[u8], what: &str) -> Result<()> {
+        if marks.len() != self.len() {
+            return Err(Error::mesh(format!(
+                "{what}: {} edge marks for {} edges; give one per edge",
+                marks.len(),
+                self.len()
+            )));
+        }
+        Ok(())
+    }
+
     /// The number of edges.
     pub fn len(&self) -> usize {
         self.a.len()
@@ -161,14 +215,35 @@ pub(crate) fn angle_between(n: Option<DVec3>, m: Option<DVec3>) -> f64 {
     }
 }
 
-/// The unit normal of each triangle of `corners` over `positions` (x, y, z per vertex), as
-/// x, y, z per triangle; (0, 0, 0) for a triangle without area. The corners must name vertices
-/// of `positions` (as [`super::weld_triangles`] returns them).
-pub fn triangle_normals(positions: &[f32], corners: &[u32]) -> Vec<DVec3> {
-    corners
+/// The unit normal of each triangle of `corners` over `positions` (x, y, z per vertex);
+/// (0, 0, 0) for a triangle without area. Errors when a corner names no vertex of
+/// `positions` or the corners are not whole triangles.
+pub fn triangle_normals(positions: &[f32], corners: &[u32]) -> Result<Vec<DVec3>> {
+    check_corners(positions, corners, "triangle normals")?;
+    Ok(corners
         .chunks_exact(3)
         .map(|t| unit_normal(positions, t[0], t[1], t[2]).unwrap_or(DVec3::ZERO))
-        .collect()
+        .collect())
+}
+
+/// Errors unless `corners` are whole triangles of vertices of `positions` (x, y, z each).
+pub(crate) fn check_corners(positions: &[f32], corners: &[u32], what: &str) -> Result<()> {
+    if !positions.len().is_multiple_of(3) || !corners.len().is_multiple_of(3) {
+        return Err(Error::mesh(format!(
+            "{what}: {} position coordinates and {} corners; give x, y, z per vertex and three \
+             corners per triangle",
+            positions.len(),
+            corners.len()
+        )));
+    }
+    let vertices = positions.len() / 3;
+    if let Some(c) = corners.iter().position(|&v| v as usize >= vertices) {
+        return Err(Error::mesh(format!(
+            "{what}: corner {c} names vertex {}, but there are only {vertices}",
+            corners[c]
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -205,9 +280,10 @@ mod tests {
     #[test]
     fn normals_of_a_unit_square_and_a_degenerate_triangle() {
         let p = [0., 0., 0., 1., 0., 0., 1., 1., 0., 2., 0., 0.];
-        let normals = triangle_normals(&p, &[0, 1, 2, 0, 1, 3]);
+        let normals = triangle_normals(&p, &[0, 1, 2, 0, 1, 3]).unwrap();
         assert_eq!(normals, [DVec3::Z, DVec3::ZERO]);
         assert_eq!(triangle_area(&p, 0, 1, 2), 0.5);
         assert!(TriangleEdges::new(&[0, 1]).is_err());
+        assert!(triangle_normals(&p, &[0, 1, 4]).is_err());
     }
 }

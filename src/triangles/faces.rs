@@ -1,7 +1,7 @@
 //! The faces to subdivide, from welded triangles: sharp edges found, triangles joined into quads
 //! and smoothing fans grouped, each when asked for, in one call.
 
-use super::edges::{triangle_normals, TriangleEdges};
+use super::edges::{check_corners, triangle_normals, TriangleEdges};
 use super::quads::{join_quads, triangle_polygons, JoinConstraints, Polygons, QuadLimits};
 use super::sharp::{
     crease_angle_edges, normal_split_edges, splits_normals, tagged_edges, FOUND, SMOOTH,
@@ -93,8 +93,9 @@ pub fn triangle_faces(
     let mut marks = vec![SMOOTH; edges.len()];
     let normals = (options.crease_angle.is_some() || options.quads.is_some())
         .then(|| triangle_normals(positions, corners));
+    let normals = normals.transpose()?;
     if let (Some(angle), Some(normals)) = (options.crease_angle, &normals) {
-        crease_angle_edges(&edges, normals, angle, &mut marks);
+        crease_angle_edges(&edges, normals, angle, &mut marks)?;
     }
     if let Some(split) = options.split_normals {
         normal_split_edges(&edges, input_corners, split, &mut marks)?;
@@ -137,20 +138,12 @@ fn check(
 ) -> Result<()> {
     let triangles = corners.len() / 3;
     let wrong = |what: String| Err(Error::mesh(format!("triangle faces: {what}")));
-    if !positions.len().is_multiple_of(3) || !corners.len().is_multiple_of(3) {
-        return wrong(format!(
-            "{} position coordinates and {} corners; give x, y, z per vertex and three corners \
-             per triangle",
-            positions.len(),
+    check_corners(positions, corners, "triangle faces")?;
+    if u32::try_from(corners.len()).is_err() {
+        return Err(Error::TooLarge(format!(
+            "{} triangle corners; faces number their corners with 32-bit indices",
             corners.len()
-        ));
-    }
-    let vertices = positions.len() / 3;
-    if let Some(c) = corners.iter().position(|&v| v as usize >= vertices) {
-        return wrong(format!(
-            "corner {c} names vertex {}, but there are only {vertices}",
-            corners[c]
-        ));
+        )));
     }
     if input_corners.len() != corners.len() {
         return wrong(format!(
@@ -216,6 +209,64 @@ mod tests {
         distinct.sort_unstable();
         distinct.dedup();
         assert_eq!(distinct.len(), 24);
+    }
+
+    #[test]
+    fn random_soups_give_every_triangle_once_and_never_panic() {
+        // Points on a coarse lattice (many welds, folds, non-manifold and flipped edges).
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut random = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        for round in 0..200 {
+            let vertices = 3 + random(40) as usize;
+            let positions: Vec<f32> = (0..3 * vertices).map(|_| random(4) as f32 * 0.5).collect();
+            let input: Vec<u32> =
+                (0..3 * (1 + random(60))).map(|_| random(vertices as u64) as u32).collect();
+            let normals: Vec<f32> = (0..3 * vertices).map(|_| random(3) as f32 - 1.0).collect();
+            let welded = weld_triangles(&positions, &input, [0.0, 0.3][round % 2]).unwrap();
+            let triangles = welded.kept.len();
+            let input_corners: Vec<u32> = welded
+                .kept
+                .iter()
+                .flat_map(|&t| [0, 1, 2].map(|j| input[3 * t as usize + j]))
+                .collect();
+            let classes: Vec<u32> = (0..vertices as u32).map(|v| v % 3).collect();
+            let groups: Vec<u32> = (0..triangles as u32).map(|t| t % 2).collect();
+            let holes: Vec<u32> = (0..triangles as u32).filter(|t| t % 5 == 0).collect();
+            let pairs = welded.corners.len().min(4) / 2;
+            let options = FaceOptions {
+                crease_angle: Some(0.6),
+                split_normals: Some(&normals),
+                creases: &welded.corners[..pairs * 2],
+                crease_sharpness: &[10.0, 2.0][..pairs],
+                quads: Some(QuadLimits::default()),
+                groups: Some(&groups),
+                corner_classes: Some(&classes),
+                holes: &holes,
+                sides: true,
+            };
+            let faces =
+                triangle_faces(&welded.positions, &welded.corners, &input_corners, &options)
+                    .unwrap();
+            let p = &faces.polygons;
+            let mut used = vec![0; 3 * triangles];
+            for &c in &p.corners {
+                used[c as usize] += 1;
+            }
+            // A quad takes its first triangle's corners and the far corner of its partner.
+            assert!(used.iter().all(|&u| u <= 1), "round {round}: a corner used twice");
+            assert!(used.chunks_exact(3).all(|t| t.contains(&1)), "round {round}: a triangle lost");
+            let quads = p.face_sizes.iter().filter(|&&n| n == 4).count();
+            assert_eq!(p.corners.len(), 3 * triangles - 2 * quads);
+            assert_eq!(p.face_sizes.iter().sum::<u32>() as usize, p.corners.len());
+            if let Some(sides) = &faces.sides {
+                assert_eq!(sides.len(), p.corners.len());
+            }
+        }
     }
 
     #[test]

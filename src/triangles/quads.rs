@@ -68,8 +68,8 @@ impl Polygons {
     }
 }
 
-/// Every triangle of a list of `triangles` as a polygon of its own.
-pub fn triangle_polygons(triangles: usize) -> Polygons {
+/// Every triangle of a list of `triangles` (fewer than 2^32 / 3) as a polygon of its own.
+pub(crate) fn triangle_polygons(triangles: usize) -> Polygons {
     Polygons {
         face_sizes: vec![3; triangles],
         corners: (0..3 * triangles as u32).collect(),
@@ -80,8 +80,19 @@ pub fn triangle_polygons(triangles: usize) -> Polygons {
 /// Blender's join error of the quad (v1, v2, v3, v4) (`bmo_join_triangles.c`,
 /// `quad_calc_error`): how far its two triangulations are from flat, how far its corners are
 /// from right angles and how unequal the two triangulations' areas are (a concave quad's
-/// differ); each term is 0 for a flat rectangle.
-pub fn quad_error(positions: &[f32], quad: [u32; 4]) -> f64 {
+/// differ); each term is 0 for a flat rectangle. Errors when a corner names no vertex of
+/// `positions` (x, y, z per vertex).
+pub fn quad_error(positions: &[f32], quad: [u32; 4]) -> Result<f64> {
+    let vertices = positions.len() / 3;
+    if let Some(&v) = quad.iter().find(|&&v| v as usize >= vertices) {
+        return Err(Error::mesh(format!(
+            "quad error: the quad names vertex {v}, but there are only {vertices}"
+        )));
+    }
+    Ok(quad_error_unchecked(positions, quad))
+}
+
+fn quad_error_unchecked(positions: &[f32], quad: [u32; 4]) -> f64 {
     let [v1, v2, v3, v4] = quad;
     let normal = |i, j, k| unit_normal(positions, i, j, k);
     let flat = (angle_between(normal(v1, v2, v3), normal(v1, v3, v4))
@@ -169,7 +180,7 @@ pub fn join_quads(
             continue;
         }
         candidates.push(e);
-        errors.push(quad_error(positions, [u, q, v, p]));
+        errors.push(quad_error_unchecked(positions, [u, q, v, p]));
     }
     let mut order: Vec<usize> = (0..candidates.len()).collect();
     order.sort_by(|&i, &j| errors[i].total_cmp(&errors[j]).then(i.cmp(&j)));
@@ -281,7 +292,8 @@ mod tests {
         let vertices: Vec<u32> =
             quads.corners.iter().map(|&c| [0, 1, 2, 0, 2, 3][c as usize]).collect();
         assert_eq!(vertices, [2, 3, 0, 1]);
-        assert_eq!(quad_error(&SQUARE, [0, 1, 2, 3]), 0.0);
+        assert_eq!(quad_error(&SQUARE, [0, 1, 2, 3]).unwrap(), 0.0);
+        assert!(quad_error(&SQUARE, [0, 1, 2, 4]).is_err());
     }
 
     #[test]

@@ -27,8 +27,22 @@ pub fn splits_normals(mark: u8) -> bool {
 
 /// Marks [`FOUND`] every edge between two consistently wound triangles whose normals (from
 /// [`triangle_normals`](super::triangle_normals)) differ by more than `angle` radians: the
-/// dihedral angle test. Triangles without area never make an edge sharp.
-pub fn crease_angle_edges(edges: &TriangleEdges, normals: &[DVec3], angle: f64, marks: &mut [u8]) {
+/// dihedral angle test. Triangles without area never make an edge sharp. Errors when `normals`
+/// (one per triangle) or `marks` (one per edge) do not fit the edges.
+pub fn crease_angle_edges(
+    edges: &TriangleEdges,
+    normals: &[DVec3],
+    angle: f64,
+    marks: &mut [u8],
+) -> Result<()> {
+    edges.check_marks(marks, "crease angle")?;
+    if normals.len() * 3 != edges.num_half_edges() {
+        return Err(Error::mesh(format!(
+            "crease angle: {} triangle normals for {} triangles; give one per triangle",
+            normals.len(),
+            edges.num_half_edges() / 3
+        )));
+    }
     let cos_limit = angle.cos();
     for (e, mark) in marks.iter_mut().enumerate() {
         let Some((t0, t1)) = edges.triangles(e) else { continue };
@@ -37,6 +51,7 @@ pub fn crease_angle_edges(edges: &TriangleEdges, normals: &[DVec3], angle: f64, 
             *mark = FOUND;
         }
     }
+    Ok(())
 }
 
 /// Two normals of one welded vertex are one (not split) within about 1 degree.
@@ -48,12 +63,21 @@ fn normal_split_cos() -> f64 {
 /// differ at both ends and carry normals more than about 1° apart at both ends: where the input
 /// split its vertices to give each side its own normal. `input_corners` is the input vertex of
 /// each triangle corner (the welded corners' copies), `normals` x, y, z per input vertex.
+/// Errors when the arrays do not fit the edges or each other.
 pub fn normal_split_edges(
     edges: &TriangleEdges,
     input_corners: &[u32],
     normals: &[f32],
     marks: &mut [u8],
 ) -> Result<()> {
+    edges.check_marks(marks, "normal splits")?;
+    if input_corners.len() != edges.num_half_edges() {
+        return Err(Error::mesh(format!(
+            "normal splits: {} input corners for {} triangle corners; give one per corner",
+            input_corners.len(),
+            edges.num_half_edges()
+        )));
+    }
     if let Some(k) = input_corners.iter().position(|&v| 3 * v as usize + 2 >= normals.len()) {
         return Err(Error::InvalidAttribute(format!(
             "normals: corner {k} is input vertex {}, but the normals (x, y, z per vertex) cover \
@@ -90,7 +114,8 @@ pub fn normal_split_edges(
 
 /// Marks the caller's creases, given as pairs of (welded) vertices with a sharpness each:
 /// [`TAGGED_SHARP`] from sharpness 10 on, [`TAGGED`] below; a later pair overrides an earlier
-/// one on the same edge. Pairs that are no edge of the triangles are left out.
+/// one on the same edge. Pairs that are no edge of the triangles are left out. Errors when the
+/// sharpness values do not fit the pairs or `marks` the edges.
 pub fn tagged_edges(
     edges: &TriangleEdges,
     pairs: &[u32],
@@ -105,6 +130,7 @@ pub fn tagged_edges(
             sharpness.len()
         )));
     }
+    edges.check_marks(marks, "creases")?;
     for (pair, &s) in pairs.chunks_exact(2).zip(sharpness) {
         if let Some(e) = edges.find(pair[0], pair[1]) {
             marks[e as usize] = if s >= 10.0 { TAGGED_SHARP } else { TAGGED };
@@ -132,16 +158,19 @@ mod tests {
     fn the_dihedral_angle_of_a_cube_edge_is_ninety_degrees() {
         let (positions, corners) = cube();
         let edges = TriangleEdges::new(&corners).unwrap();
-        let normals = triangle_normals(&positions, &corners);
+        let normals = triangle_normals(&positions, &corners).unwrap();
         assert_eq!(edges.len(), 18); // 12 cube edges and 6 diagonals
         let sharp_at = |degrees: f64| {
             let mut marks = vec![SMOOTH; edges.len()];
-            crease_angle_edges(&edges, &normals, degrees.to_radians(), &mut marks);
+            crease_angle_edges(&edges, &normals, degrees.to_radians(), &mut marks).unwrap();
             marks.iter().filter(|&&m| m == FOUND).count()
         };
         assert_eq!(sharp_at(89.0), 12);
         assert_eq!(sharp_at(91.0), 0);
         assert_eq!(sharp_at(0.0), 12); // the diagonals are flat
+        let mut marks = vec![SMOOTH; edges.len()];
+        assert!(crease_angle_edges(&edges, &normals[1..], 0.5, &mut marks).is_err());
+        assert!(crease_angle_edges(&edges, &normals, 0.5, &mut marks[1..]).is_err());
     }
 
     #[test]
@@ -150,7 +179,7 @@ mod tests {
         let (cube_positions, cube_corners) = cube();
         let (mut positions, mut corners, mut normals) = (Vec::new(), Vec::new(), Vec::new());
         for tri in cube_corners.chunks_exact(3) {
-            let n = triangle_normals(&cube_positions, tri)[0];
+            let n = triangle_normals(&cube_positions, tri).unwrap()[0];
             for &v in tri {
                 corners.push((positions.len() / 3) as u32);
                 positions.extend_from_slice(&cube_positions[3 * v as usize..3 * v as usize + 3]);
