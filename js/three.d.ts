@@ -21,7 +21,7 @@ export interface QuadJoinOptions {
  */
 export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normals'> {
   /**
-   * Positions nearer than this distance are welded into one vertex (a spatial hash grid of this
+   * Positions nearer than this distance are welded into one vertex (a grid of this
    * cell size; each position joins the nearest earlier one within the distance). Default 0:
    * only bit-identical positions are welded.
    */

@@ -36,11 +36,12 @@ AFTER=$(size "$BG")
 # entry loads it synchronously: import { subdivide } from 'subsurf/node'), node.d.ts, webgpu.js and
 # webgpu.d.ts (subsurf/webgpu: stencil tables evaluated by a WebGPU compute shader), three.js,
 # three-node.js and three.d.ts (subsurf/three: subdivideGeometry for three.js; three-node.js is
-# its Node entry, which loads the .wasm through node.js first), the worker-*.js and .d.ts files
-# (subsurf/worker: subdivide in a Web Worker or a worker_threads thread; worker.js and
+# its Node entry, which loads the .wasm through node.js first), geometry.js (subsurf/three's
+# array-level core, typed arrays in and out, which three.js imports), the worker-*.js and .d.ts
+# files (subsurf/worker: subdivide in a Web Worker or a worker_threads thread; worker.js and
 # worker-node.js call, worker-thread.js answers, worker-script*.js are the threads' scripts),
 # and the package.json and README.md templates, which get the crate's version and description here.
-cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts "$OUT/"
+cp js/auto.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts js/geometry.js "$OUT/"
 cp js/worker.js js/worker-node.js js/worker.d.ts js/worker-client.js js/worker-thread.js js/worker-thread.d.ts \
   js/worker-script.js js/worker-script-node.js "$OUT/"
 

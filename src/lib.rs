@@ -18,7 +18,8 @@
 //! Layers, bottom up: [`mesh`] (the half-edge mesh), [`options`] (the vocabulary), [`rules`]
 //! (rules as weights), [`primvar`] (applying weights to data), [`refine`] (topology hosts),
 //! [`fvar`] (face-varying topology and values), [`attributes`] (data besides positions),
-//! [`stencil`] (stencil tables) and [`evaluator`] (refine once, evaluate every frame), [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`io`] (OBJ),
+//! [`stencil`] (stencil tables) and [`evaluator`] (refine once, evaluate every frame), [`scheme`] (the driver), [`drawable`] (one index buffer for meshes with seams), [`triangles`] (triangle soups
+//! from renderers welded and joined into faces), [`io`] (OBJ),
 //! and the wasm bindings.
 
 pub mod attributes;
@@ -39,6 +40,7 @@ pub mod scheme;
 pub mod shapes;
 pub mod stencil;
 pub mod tags;
+pub mod triangles;
 
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;

@@ -17,6 +17,21 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
+/// Whether `from` depends on `to`, directly or through other modules.
+fn reaches(graph: &BTreeMap<String, BTreeSet<String>>, from: &str, to: &str) -> bool {
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![from.to_string()];
+    while let Some(node) = stack.pop() {
+        if node == to {
+            return true;
+        }
+        if seen.insert(node.clone()) {
+            stack.extend(graph.get(&node).into_iter().flatten().cloned());
+        }
+    }
+    false
+}
+
 #[test]
 fn modules_form_no_cycle() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
@@ -45,6 +60,22 @@ fn modules_form_no_cycle() {
         }
     }
     assert!(graph.len() >= 10, "modules found: {:?}", graph.keys());
+    // `triangles` (triangle soups welded and joined into faces, for subsurf/three) sits beside
+    // the scheme and evaluation layers: the layers below never reach it, and it needs nothing
+    // but the mesh type and the error type.
+    assert!(graph.contains_key("triangles"), "modules found: {:?}", graph.keys());
+    for low in ["mesh", "refine", "rules"] {
+        assert!(
+            !reaches(&graph, low, "triangles"),
+            "{low} depends on triangles; design.md's layers keep it below"
+        );
+    }
+    let allowed: BTreeSet<String> = ["error", "mesh"].map(String::from).into();
+    assert!(
+        graph["triangles"].is_subset(&allowed),
+        "triangles depends on {:?}; it should need only {allowed:?}",
+        graph["triangles"]
+    );
     // Depth-first search for a back edge.
     fn visit(
         node: &str,

@@ -29,6 +29,7 @@ mod input;
 mod messages;
 mod options;
 mod output;
+mod triangles;
 mod viewer;
 
 pub use evaluator::Evaluator;
@@ -36,6 +37,7 @@ use input::*;
 use messages::*;
 use options::*;
 use output::*;
+pub use triangles::*;
 pub use viewer::*;
 
 // The macro consumes the item it marks, so the text lives in its own constant that the unit test

@@ -169,6 +169,36 @@ for (const [name, api] of [['subsurf/node', node], ["'subsurf' in Node, no init"
   });
 }
 
+// ---- triangle lists (subsurf::triangles, which subsurf/three is built on)
+check('weldTriangles, triangleFaces, sideNormals', () => {
+  // Two triangles of a unit square stored with six vertices, and one that collapses.
+  const positions = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0]);
+  const original = positions.slice();
+  const w = node.weldTriangles(positions, new Uint32Array([0, 1, 2, 3, 4, 5, 0, 3, 1]));
+  assert.deepEqual([...w.weldOf], [0, 1, 2, 0, 2, 3]);
+  assert.deepEqual([...w.kept], [0, 1]);
+  assert.deepEqual([...w.corners], [0, 1, 2, 0, 2, 3]);
+  assert.equal(w.positions.length, 12);
+  assert.deepEqual(positions, original, 'the input is not written');
+  const near = node.weldTriangles(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 1.0001, 0, 0]), new Uint32Array([0, 1, 2, 3, 2, 0]), 0.001);
+  assert.deepEqual([...near.weldOf], [0, 1, 2, 1]);
+  const faces = node.triangleFaces(
+    { positions: w.positions, corners: w.corners, inputCorners: new Uint32Array([0, 1, 2, 3, 4, 5]) },
+    { quads: true, sides: true },
+  );
+  assert.deepEqual([...faces.faceSizes], [4]);
+  assert.deepEqual([...faces.indices], [2, 3, 0, 1]);
+  assert.equal(faces.sides, undefined, 'no sharp edge, no sides');
+  assert.throws(() => node.weldTriangles(positions, new Uint32Array([0, 1, 9])), /corner 2 \(triangle 0\) names vertex 9, but there are only 6 vertices/);
+  assert.throws(() => node.weldTriangles(positions, new Uint16Array([0, 1, 2])), /weldTriangles: index must be a Uint32Array, got Uint16Array; convert it/);
+  assert.throws(() => node.triangleFaces({ positions: w.positions, corners: w.corners }, {}), /triangleFaces: inputCorners must be a Uint32Array, got undefined/);
+  assert.throws(() => node.triangleFaces({ positions: w.positions, corners: w.corners, inputCorners: w.corners }, { quad: true }), /unknown field 'quad' \(did you mean 'quads'\?\)/);
+  const mesh = { positions: w.positions, indices: faces.indices, faceSizes: faces.faceSizes };
+  assert.throws(() => node.sideNormals(mesh, new Uint32Array(4), 0, new Uint32Array(4), new Float32Array(12)), /corner 0 has side 0, but there are 0/);
+  const same = node.sideNormals(mesh, new Uint32Array(4), 1, new Uint32Array([0, 1, 2, 3]), new Float32Array(12).fill(0.5));
+  assert.deepEqual([...same], new Array(12).fill(0.5), 'one side everywhere: the normals stay');
+});
+
 // ---- TypeScript declarations are precise, not `any`
 // Whitespace collapsed: wasm-bindgen re-indents the custom section and lines may wrap.
 const dts = readFileSync(join(installed, 'subsurf.d.ts'), 'utf8').replace(/\s+/g, ' ');
@@ -191,6 +221,9 @@ check('subsurf.d.ts', () => {
     'export interface SubdivideMesh {',
     'export interface SubdivideOptions {',
     'export interface SubdivideResult extends PolygonMesh {',
+    'export function weldTriangles(positions: Float32Array, index: Uint32Array, weld?: number): WeldedTriangles;',
+    'export function triangleFaces(input: TriangleFacesInput, options?: TriangleFacesOptions): TriangleFaces;',
+    'export interface WeldedTriangles {',
   ]) {
     assert.ok(dts.includes(line), `subsurf.d.ts should contain: ${line}`);
   }
