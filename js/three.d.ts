@@ -29,7 +29,8 @@ export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normal
   /**
    * Join pairs of triangles into quads before subdividing (Blender's "Tris to Quads": greedy by
    * its join error, never across a crease, a UV or other face-varying seam, a group boundary or a
-   * hole). A triangulated quad mesh gets its quads back. Needs a scheme whose first level takes
+   * hole; consecutive triangles first, as exporters write a quad's two). A triangulated quad
+   * mesh gets its own quads back where they pass the thresholds. Needs a scheme whose first level takes
    * quads ('catmull-clark', 'quad-triangle', 'bilinear', 'doo-sabin'). Default false.
    */
   quads?: boolean | QuadJoinOptions;

@@ -122,7 +122,11 @@ fn quad_error_unchecked(positions: &[f32], quad: [u32; 4]) -> f64 {
 /// and makes a convex quad whose triangles' normals differ by at most `limits.face_angle` and
 /// whose other diagonal's triangles' by at most `limits.shape_angle`, is a candidate;
 /// candidates are taken greedily by [`quad_error`], smallest first (ties in edge order), while
-/// both triangles are free. A quad (u, q, v, p) of triangles (u, v, p) and (v, u, q) starts at
+/// both triangles are free. Two steps are ours, so that a quad mesh triangulated with one
+/// diagonal per quad gets its own quads back: consecutive triangles `t`, `t + 1` that are a
+/// candidate are joined first, in order (exporters write a quad's two triangles together),
+/// and after the greedy pass, triangles left alone are joined where a short chain of
+/// re-pairings allows it ([`Matching::augment`]). A quad (u, q, v, p) of triangles (u, v, p) and (v, u, q) starts at
 /// the shared edge's corner in the lower triangle.
 ///
 /// Errors when the arrays do not fit each other.
@@ -185,22 +189,44 @@ pub fn join_quads(
     let mut order: Vec<usize> = (0..candidates.len()).collect();
     order.sort_by(|&i, &j| errors[i].total_cmp(&errors[j]).then(i.cmp(&j)));
 
-    const FREE: u32 = u32::MAX;
+    let graph = Candidates::new(edges, &candidates, &order, triangles);
     // Per triangle, its partner and the half-edge on the shared edge.
-    let mut partner = vec![FREE; triangles];
-    let mut join_edge = vec![FREE; triangles];
-    let mut joined = 0;
-    for i in order {
-        let e = candidates[i];
-        let (h, g) = (edges.h0[e], edges.h1[e]);
-        let (t1, t2) = (h as usize / 3, g as usize / 3);
-        if partner[t1] != FREE || partner[t2] != FREE {
+    let mut matching = Matching {
+        partner: vec![FREE; triangles],
+        join_edge: vec![FREE; triangles],
+        apart: vec![false; triangles],
+    };
+    // Exporters (glTF, three.js geometries) write a quad's two triangles one after the other;
+    // geometry alone cannot tell which of two near-equal pairs was the quad (the thin quads
+    // of a fan around a pole, folded quads), their order can. So consecutive triangles are
+    // joined first, in order, where the rule allows them.
+    // A consecutive pair the rule refuses (a folded quad) stays two triangles: joining either
+    // with a neighbour would make a quad the model never had.
+    let mut t = 0;
+    while t + 1 < triangles {
+        let next_to = |e: u32| {
+            let (h, g) = (edges.h0[e as usize] as usize / 3, edges.h1[e as usize] as usize / 3);
+            h.min(g) == t && h.max(g) == t + 1
+        };
+        if !(0..3).any(|j| next_to(edges.edge_of[3 * t + j])) {
+            t += 1;
             continue;
         }
-        (partner[t1], partner[t2]) = (t2 as u32, t1 as u32);
-        (join_edge[t1], join_edge[t2]) = (h, g);
-        joined += 1;
+        match graph.of(t).iter().find(|&&e| next_to(e)) {
+            Some(&e) => matching.pair(edges, e as usize),
+            None => (matching.apart[t], matching.apart[t + 1]) = (true, true),
+        }
+        t += 2;
     }
+    for &i in &order {
+        let (t1, t2) = matching.ends(edges, candidates[i]);
+        if matching.is_free(t1) && matching.is_free(t2) {
+            matching.pair(edges, candidates[i]);
+        }
+    }
+    matching.augment(edges, &graph);
+    let joined = matching.partner.iter().filter(|&&p| p != FREE).count() / 2;
+    let Matching { partner, join_edge, .. } = matching;
 
     let count = triangles - joined;
     let mut polygons = Polygons {
@@ -226,6 +252,146 @@ pub fn join_quads(
         }
     }
     Ok(polygons)
+}
+
+const FREE: u32 = u32::MAX;
+
+/// Which triangles are joined: per triangle its partner (or [`FREE`]) and its half-edge on the
+/// shared edge.
+struct Matching {
+    partner: Vec<u32>,
+    join_edge: Vec<u32>,
+    /// Triangles kept apart: they join nothing.
+    apart: Vec<bool>,
+}
+
+/// The candidate edges around each triangle, in join-error order (compressed rows).
+struct Candidates {
+    start: Vec<u32>,
+    around: Vec<u32>,
+}
+
+impl Candidates {
+    fn new(edges: &TriangleEdges, candidates: &[usize], order: &[usize], triangles: usize) -> Self {
+        let ends = |e: usize| [edges.h0[e] as usize / 3, edges.h1[e] as usize / 3];
+        let mut start = vec![0u32; triangles + 1];
+        for &e in candidates {
+            for t in ends(e) {
+                start[t + 1] += 1;
+            }
+        }
+        for t in 0..triangles {
+            start[t + 1] += start[t];
+        }
+        let mut fill = start.clone();
+        let mut around = vec![0u32; start[triangles] as usize];
+        for &i in order {
+            let e = candidates[i];
+            for t in ends(e) {
+                around[fill[t] as usize] = e as u32;
+                fill[t] += 1;
+            }
+        }
+        Candidates { start, around }
+    }
+
+    /// The candidate edges of triangle `t`.
+    fn of(&self, t: usize) -> &[u32] {
+        &self.around[self.start[t] as usize..self.start[t + 1] as usize]
+    }
+}
+
+impl Matching {
+    /// Whether triangle `t` may still be joined.
+    fn is_free(&self, t: usize) -> bool {
+        self.partner[t] == FREE && !self.apart[t]
+    }
+
+    /// The two triangles of candidate edge `e`.
+    fn ends(&self, edges: &TriangleEdges, e: usize) -> (usize, usize) {
+        (edges.h0[e] as usize / 3, edges.h1[e] as usize / 3)
+    }
+
+    /// Joins the two triangles of candidate edge `e` (whatever they were joined to before).
+    fn pair(&mut self, edges: &TriangleEdges, e: usize) {
+        let (h, g) = (edges.h0[e], edges.h1[e]);
+        let (t1, t2) = (h as usize / 3, g as usize / 3);
+        (self.partner[t1], self.partner[t2]) = (t2 as u32, t1 as u32);
+        (self.join_edge[t1], self.join_edge[t2]) = (h, g);
+    }
+
+    /// Joins triangles that the greedy pass left alone, where a short chain of re-pairings
+    /// allows it (an augmenting path of the matching): free `a`, joined `b`–`c`, free `d` with
+    /// candidate edges `a`–`b` and `c`–`d` become `a`–`b` and `c`–`d`, and so on along longer
+    /// chains. Blender stops after the greedy pass. Next to thin, nearly triangular quads of a
+    /// triangulated quad mesh its join error can prefer two triangles of neighbouring quads,
+    /// which strands each one's true partner; this pass gives those quads back, so that a
+    /// triangulated quad mesh is joined into its own quads. Chains are searched breadth first
+    /// over at most `MAX_VISITED` triangles, candidates in join-error order, so the search
+    /// stays local and repeatable.
+    fn augment(&mut self, edges: &TriangleEdges, graph: &Candidates) {
+        const MAX_VISITED: usize = 64;
+        let triangles = self.partner.len();
+        let (start, around) = (&graph.start, &graph.around);
+        // Per triangle reached as a partner's partner: the edge that reached its partner and
+        // the triangle it came from; `seen` marks the triangles of the current search.
+        let mut via = vec![(FREE, FREE); triangles];
+        let mut seen = vec![FREE; triangles];
+        let mut queue = Vec::with_capacity(MAX_VISITED);
+        for root in 0..triangles {
+            if !self.is_free(root) || start[root] == start[root + 1] {
+                continue;
+            }
+            let stamp = root as u32;
+            seen[root] = stamp;
+            queue.clear();
+            queue.push(root);
+            let mut next = 0;
+            'search: while next < queue.len() && queue.len() < MAX_VISITED {
+                let outer = queue[next];
+                next += 1;
+                for &e in &around[start[outer] as usize..start[outer + 1] as usize] {
+                    let (t1, t2) = self.ends(edges, e as usize);
+                    let inner = if t1 == outer { t2 } else { t1 };
+                    if seen[inner] == stamp || self.apart[inner] {
+                        continue;
+                    }
+                    seen[inner] = stamp;
+                    let mate = self.partner[inner];
+                    if mate == FREE {
+                        self.flip(edges, outer, e as usize, root, &via);
+                        break 'search;
+                    }
+                    if seen[mate as usize] != stamp {
+                        seen[mate as usize] = stamp;
+                        via[inner] = (e, outer as u32);
+                        queue.push(mate as usize);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Flips the chain found by [`Matching::augment`]: `outer` joins the free triangle across
+    /// `e`, then each stranded partner back to `root` joins the triangle that reached it.
+    fn flip(
+        &mut self,
+        edges: &TriangleEdges,
+        mut outer: usize,
+        mut e: usize,
+        root: usize,
+        via: &[(u32, u32)],
+    ) {
+        loop {
+            let stranded = self.partner[outer];
+            self.pair(edges, e);
+            if outer == root {
+                return;
+            }
+            let (edge, from) = via[stranded as usize];
+            (e, outer) = (edge as usize, from as usize);
+        }
+    }
 }
 
 fn check_join(

@@ -374,16 +374,11 @@ function largestFold(mesh) {
 // ---- the fixtures
 
 /**
- * Known failures of `quads: true` (js/three.js's joinQuads), checked to still fail (run with
- * --strict to see them fail): the greedy pairing by Blender's join error takes a pair of
- * triangles from two neighbouring quads when that pair's error is lower than either quad's own,
- * so a quad mesh triangulated one diagonal per quad does not always get its quads back.
+ * Known failures of `quads: true`, checked to still fail (run with --strict to see them fail).
+ * None now: `catmark_lefthanded` was one until join_quads joined consecutive triangles first and
+ * mended stranded ones along augmenting paths (DEVELOPERS.md, subsurf/three).
  */
-const KNOWN_QUAD_FAILURES = {
-  // 434 quads, every fold under 40°: 5 quads are not rebuilt (their triangles pair across a
-  // shared edge next to thin, nearly triangular quads, e.g. OBJ faces 31 and 52, 109 and 112).
-  catmark_lefthanded: true,
-};
+const KNOWN_QUAD_FAILURES = {};
 const strict = process.argv.includes('--strict');
 const knownFailures = new Set();
 
