@@ -301,7 +301,8 @@ export function subdivideTriangles(input, options = {}) {
         if (relative) for (let k = 0; k < cage.length; k++) cage[k] += weldedPositions[k];
         const cageMesh = { positions: cage, indices: mesh.indices };
         if (mesh.faceSizes) cageMesh.faceSizes = mesh.faceSizes;
-        limitNormals = subdivide(cageMesh, { ...subdivideOptions, normals: true }).normals;
+        // onProgress reports the surface's levels once, in order; these passes are not counted.
+        limitNormals = subdivide(cageMesh, { ...subdivideOptions, normals: true, onProgress: undefined }).normals;
       }
       const normals = normalsFor(moved, limitNormals);
       if (relative) for (let k = 0; k < normals.length; k++) normals[k] -= result.normals[k];
@@ -353,7 +354,11 @@ export function checkOptions(options) {
   return readOwnOptions(options);
 }
 
-function readOwnOptions(options) {
+/**
+ * checkOptions without the wasm check: for subdivideGeometryAsync, whose page may have no wasm
+ * module of its own (the work runs in a worker's).
+ */
+export function readOwnOptions(options) {
   const own = { weld: 0, quads: false, creaseAngle: undefined, sharpNormalSplits: false, normals: true };
   if (options.weld !== undefined) {
     if (typeof options.weld !== 'number' || !(options.weld >= 0) || !Number.isFinite(options.weld)) {

@@ -1,7 +1,8 @@
 // subsurf/three: subdivision of a three.js BufferGeometry. The three.js types come from
 // @types/three (install it beside three for TypeScript).
 import type { BufferGeometry } from 'three';
-import type { SubdivideOptions } from './subsurf.js';
+import type { SubdivideOptions, SubdivideProgress } from './subsurf.js';
+import type { SubsurfWorker } from './worker.js';
 
 /** Thresholds of `quads` (Blender's "Tris to Quads"), in radians. */
 export interface QuadJoinOptions {
@@ -18,6 +19,7 @@ export interface QuadJoinOptions {
  * Every option of `subdivide` (scheme, levels, boundary, fvarLinear, limit, creases, corners,
  * holes, maxFaces, ...), and those of the geometry adapter. `creases` and `corners` name vertices
  * of the input geometry (values of its index), `holes` its triangles (index offset / 3).
+ * `onProgress` is told after each level of the surface's subdivision, once per level.
  */
 export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normals'> {
   /**
@@ -64,3 +66,38 @@ export interface SubdivideGeometryOptions extends Omit<SubdivideOptions, 'normal
  * `await init()` from 'subsurf/init' once before.
  */
 export function subdivideGeometry(geometry: BufferGeometry, options?: SubdivideGeometryOptions): BufferGeometry;
+
+/** Where and how `subdivideGeometryAsync` runs. */
+export interface SubdivideGeometryCall {
+  /**
+   * The thread to run in: `createWorker()` of 'subsurf/worker' (or one started with `spawn`
+   * whose table spreads `functions` of 'subsurf/worker-thread'). Required: the worker is yours
+   * to share with other calls and to `terminate()`. Calls on one worker run one at a time.
+   */
+  worker: SubsurfWorker;
+  /**
+   * Aborting it rejects the call with the signal's reason (a `DOMException` named 'AbortError').
+   * A running call's thread is terminated and a fresh one started for the worker's next call.
+   */
+  signal?: AbortSignal;
+  /**
+   * Told after each level of the subdivision, `{ level, levels, faces, vertices }`, levels in
+   * order (the extra passes for morph normals tell nothing). Wins over `options.onProgress`.
+   * What it throws rejects the call with that.
+   */
+  onProgress?: (progress: SubdivideProgress) => void;
+}
+
+/**
+ * `subdivideGeometry` with its work in a worker thread, so the page stays responsive: the same
+ * `BufferGeometry`, attribute for attribute and byte for byte. The geometry is read on the
+ * calling thread (copies of its arrays go to the worker; the input is never modified or
+ * detached), the result's arrays come back transferred. Bad input rejects with the `Error`
+ * `subdivideGeometry` would throw. Imported from 'subsurf/three/init' it needs no `init()` on the
+ * page: the worker instantiates its own wasm.
+ */
+export function subdivideGeometryAsync(
+  geometry: BufferGeometry,
+  options: SubdivideGeometryOptions | undefined,
+  call: SubdivideGeometryCall,
+): Promise<BufferGeometry>;

@@ -8,17 +8,20 @@
 // split again where face-varying data (UV seams, sharp edges) needs it, into a new indexed
 // BufferGeometry. The input is never modified. Rules and options: README.md, "three.js".
 //
-// This file only converts: BufferAttributes to typed arrays and back. The work is
-// `subdivideTriangles` of ./geometry.js (typed arrays in and out, no three.js objects), whose
-// geometry runs in Rust behind the wasm bindings.
+// This file only converts: BufferAttributes to typed arrays (readGeometry) and back
+// (makeGeometry). The work between is `subdivideTriangles` of ./geometry.js (typed arrays in and
+// out, no three.js objects), whose geometry runs in Rust behind the wasm bindings: on this
+// thread for subdivideGeometry, in a subsurf/worker thread for subdivideGeometryAsync (the
+// worker's table has it, so the worker bundle never imports three).
 //
 // It imports subsurf's plain glue ('./subsurf.js') through ./geometry.js, which must have been
 // initialised before the first call. The package's "./three" export does that: in Node it
 // resolves to three-node.js (loads the .wasm synchronously, as 'subsurf/node' does), elsewhere to
 // three-auto.js (a top-level `await init()`). 'subsurf/three/init' is this file as it is: call
-// `await init()` from 'subsurf/init' once first.
+// `await init()` from 'subsurf/init' once first (subdivideGeometryAsync alone needs no init:
+// its wasm is the worker's).
 import { BufferAttribute, BufferGeometry } from 'three';
-import { checkOptions, describe, subdivideTriangles } from './geometry.js';
+import { checkOptions, describe, readOwnOptions, subdivideTriangles } from './geometry.js';
 
 /** Attributes not carried as channels: computed (normal), dropped (tangent) or special. */
 const SPECIAL = new Set(['position', 'normal', 'tangent', 'skinIndex', 'skinWeight']);
@@ -28,6 +31,48 @@ const SPECIAL = new Set(['position', 'normal', 'tangent', 'skinIndex', 'skinWeig
  * BufferGeometry. See three.d.ts and the README for the options and rules.
  */
 export function subdivideGeometry(geometry, options = {}) {
+  const read = readGeometry(geometry, options, false);
+  return makeGeometry(read, subdivideTriangles(read.input, options));
+}
+
+/**
+ * subdivideGeometry with its work (subdivideTriangles) in a subsurf/worker thread: the same
+ * result, as a promise. See three.d.ts.
+ */
+export async function subdivideGeometryAsync(geometry, options = {}, call) {
+  if (call === null || typeof call !== 'object' || !call.worker || typeof call.worker.call !== 'function') {
+    throw new Error('subdivideGeometryAsync: the third argument must be { worker } (optionally with signal and ' +
+      "onProgress), the worker from createWorker() of 'subsurf/worker' (one serves every call; terminate() it " +
+      `when done), got ${call && typeof call === 'object' ? `${describe(call)} without a worker` : describe(call)}`);
+  }
+  const { worker, signal } = call;
+  if (signal?.aborted) throw signal.reason ?? new DOMException('subdivideGeometryAsync was aborted', 'AbortError');
+  // Copies of the caller's arrays (never their own buffers), so they can all be transferred.
+  const read = readGeometry(geometry, options, true);
+  let { onProgress, ...rest } = options;
+  if (typeof onProgress !== 'function') rest = options; // subdivide refuses it with its own message
+  let sent;
+  try {
+    // Also a copy: the options' own arrays (creases, holes) must not be detached by the transfer.
+    sent = structuredClone(rest);
+  } catch (error) {
+    throw new TypeError(`subdivideGeometryAsync: the options cannot be sent to a worker: ${error.message}`);
+  }
+  const out = await worker.call('subdivideTriangles', [read.input, sent], {
+    signal,
+    onProgress: call.onProgress ?? (typeof onProgress === 'function' ? onProgress : undefined),
+    transfer: true,
+  });
+  return makeGeometry(read, out);
+}
+
+/**
+ * Checks the arguments and converts the geometry to subdivideTriangles' input, and keeps what
+ * the result's BufferGeometry takes from the input (name, userData, instanced attributes, morph
+ * target names). `copy`: every array of the input is a new one (the async call transfers them),
+ * and the wasm module need not be initialised here.
+ */
+function readGeometry(geometry, options, copy) {
   if (!geometry || geometry.isBufferGeometry !== true) {
     throw new Error(`subdivideGeometry: the first argument must be a THREE.BufferGeometry, got ${describe(geometry)}` +
       (geometry && geometry.isMesh ? ' (a Mesh: pass mesh.geometry)' : ''));
@@ -35,9 +80,9 @@ export function subdivideGeometry(geometry, options = {}) {
   if (options === null || typeof options !== 'object' || Array.isArray(options)) {
     throw new Error(`subdivideGeometry: options must be an object such as { levels: 2 }, got ${describe(options)}`);
   }
-  checkOptions(options);
+  if (copy) readOwnOptions(options);
+  else checkOptions(options);
 
-  // ---- BufferAttributes to typed arrays
   const position = geometry.getAttribute('position');
   if (!position) {
     throw new Error("subdivideGeometry: the geometry has no 'position' attribute; " +
@@ -47,50 +92,58 @@ export function subdivideGeometry(geometry, options = {}) {
     throw new Error(`subdivideGeometry: the 'position' attribute must have itemSize 3, got ${position.itemSize}`);
   }
   const numInput = position.count;
-  const input = { positions: readFloats(position, 'position'), attributes: {}, morphAttributes: {} };
+  const floats = (attr, what, raw) => readFloats(attr, what, raw, copy);
+  const input = { positions: floats(position, 'position'), attributes: {}, morphAttributes: {} };
   const index = geometry.index;
-  if (index) input.index = index.array.subarray(0, index.count);
+  if (index) input.index = copy ? index.array.slice(0, index.count) : index.array.subarray(0, index.count);
   const instanced = [];
   for (const name of Object.keys(geometry.attributes)) {
     if (SPECIAL.has(name)) continue;
     const attr = geometry.attributes[name];
     if (attr && attr.isInstancedBufferAttribute) {
-      instanced.push(name); // per instance, not per vertex: copied as it is
+      instanced.push([name, attr.clone()]); // per instance, not per vertex: copied as it is
       continue;
     }
     checkCount(attr, numInput, `attribute '${name}'`);
-    input.attributes[name] = { array: readFloats(attr, name), itemSize: attr.itemSize };
+    input.attributes[name] = { array: floats(attr, name), itemSize: attr.itemSize };
   }
   const morphs = geometry.morphAttributes || {};
+  /** By morph attribute name, each target's name and itemSize. */
+  const targets = {};
   for (const name of Object.keys(morphs)) {
-    if (name === 'normal' || !Array.isArray(morphs[name])) continue;
+    if (!Array.isArray(morphs[name])) continue;
+    targets[name] = morphs[name].map((attr) => ({ name: attr && attr.name, itemSize: attr && attr.itemSize }));
+    if (name === 'normal') continue;
     input.morphAttributes[name] = morphs[name].map((attr, i) => {
       checkCount(attr, numInput, `morphAttributes.${name}[${i}]`);
-      return { array: readFloats(attr, `morph ${name}`), itemSize: attr.itemSize };
+      return { array: floats(attr, `morph ${name}`), itemSize: attr.itemSize };
     });
   }
-  const morphNormals = Array.isArray(morphs.normal) ? morphs.normal : [];
-  input.morphNormals = morphNormals.length;
+  input.morphNormals = targets.normal ? targets.normal.length : 0;
   input.morphTargetsRelative = geometry.morphTargetsRelative;
-  input.skin = readSkin(geometry, numInput);
+  input.skin = readSkin(geometry, numInput, copy);
   input.groups = geometry.groups || [];
   const normal = geometry.getAttribute('normal');
   if (options.sharpNormalSplits === true && normal) {
     checkCount(normal, numInput, "attribute 'normal'");
-    input.normals = readFloats(normal, 'normal');
+    input.normals = floats(normal, 'normal');
   }
 
-  const out = subdivideTriangles(input, options);
-
-  // ---- typed arrays to a BufferGeometry
-  const result = new BufferGeometry();
-  result.name = geometry.name;
+  let userData;
   try {
-    result.userData = JSON.parse(JSON.stringify(geometry.userData)); // as BufferGeometry.copy does
+    userData = JSON.parse(JSON.stringify(geometry.userData)); // as BufferGeometry.copy does
   } catch {
-    result.userData = { ...geometry.userData };
+    userData = { ...geometry.userData };
   }
-  for (const name of instanced) result.setAttribute(name, geometry.attributes[name].clone());
+  return { input, name: geometry.name, userData, instanced, targets, morphTargetsRelative: geometry.morphTargetsRelative };
+}
+
+/** subdivideTriangles' output as a BufferGeometry, with what `read` kept of the input. */
+function makeGeometry(read, out) {
+  const result = new BufferGeometry();
+  result.name = read.name;
+  result.userData = read.userData;
+  for (const [name, attr] of read.instanced) result.setAttribute(name, attr);
   result.setAttribute('position', new BufferAttribute(out.positions, 3));
   if (out.normals) result.setAttribute('normal', new BufferAttribute(out.normals, 3));
   for (const name of Object.keys(out.attributes)) {
@@ -103,14 +156,14 @@ export function subdivideGeometry(geometry, options = {}) {
   }
   const morphNames = Object.keys(out.morphAttributes);
   for (const name of morphNames) {
-    const source = name === 'normal' ? morphNormals : morphs[name];
+    const source = read.targets[name];
     result.morphAttributes[name] = out.morphAttributes[name].map((array, i) => {
       const attr = new BufferAttribute(array, name === 'normal' ? 3 : source[i].itemSize);
       attr.name = source[i].name;
       return attr;
     });
   }
-  if (morphNames.length) result.morphTargetsRelative = geometry.morphTargetsRelative;
+  if (morphNames.length) result.morphTargetsRelative = read.morphTargetsRelative;
   for (const { start, count, materialIndex } of out.groups) result.addGroup(start, count, materialIndex);
   result.setIndex(new BufferAttribute(out.index, 1));
   return result;
@@ -141,12 +194,15 @@ function denormalizer(array) {
   return null;
 }
 
-/** An attribute's values as floats, itemSize per item (its own array when that is one already). */
-function readFloats(attr, what, raw = false) {
+/**
+ * An attribute's values as floats, itemSize per item (its own array when that is one already,
+ * unless `copy`).
+ */
+function readFloats(attr, what, raw = false, copy = false) {
   const { itemSize, count } = attr;
   if (!attr.isInterleavedBufferAttribute && !attr.isFloat16BufferAttribute && attr.array instanceof Float32Array &&
       attr.array.length === count * itemSize) {
-    return attr.array;
+    return copy ? attr.array.slice() : attr.array;
   }
   const out = new Float32Array(count * itemSize);
   if (attr.isFloat16BufferAttribute) {
@@ -176,7 +232,7 @@ function readFloats(attr, what, raw = false) {
 }
 
 /** skinIndex / skinWeight as `{ indices, weights, itemSize }` (raw bone indices), or null. */
-function readSkin(geometry, numInput) {
+function readSkin(geometry, numInput, copy) {
   const skinIndex = geometry.getAttribute('skinIndex');
   const skinWeight = geometry.getAttribute('skinWeight');
   if (!skinIndex && !skinWeight) return null;
@@ -190,8 +246,8 @@ function readSkin(geometry, numInput) {
     throw new Error(`subdivideGeometry: skinIndex has itemSize ${skinIndex.itemSize} but skinWeight ${skinWeight.itemSize}`);
   }
   return {
-    indices: readFloats(skinIndex, 'skinIndex', true),
-    weights: readFloats(skinWeight, 'skinWeight'),
+    indices: readFloats(skinIndex, 'skinIndex', true, copy),
+    weights: readFloats(skinWeight, 'skinWeight', false, copy),
     itemSize: skinIndex.itemSize,
   };
 }

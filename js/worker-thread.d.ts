@@ -18,6 +18,8 @@ export type WorkerFunction = (args: any, context: CallContext) => unknown;
 /** subsurf's own functions: spread it into your table, `{ ...functions, myJob }`. */
 export const functions: {
   subdivide: WorkerFunction;
+  /** subsurf/three's work on plain arrays, for `subdivideGeometryAsync` of 'subsurf/three'. */
+  subdivideTriangles: WorkerFunction;
   predictCounts: WorkerFunction;
   readObj: WorkerFunction;
   writeObj: WorkerFunction;

@@ -13,20 +13,24 @@
 // progress message, or null when the caller asked for none (so no work is spent on it); it may
 // return a promise.
 import * as subsurf from './subsurf.js';
+import { subdivideTriangles } from './geometry.js';
 import { buffersOf } from './worker-client.js';
 
 const isOptionsObject = (value) => value !== null && typeof value === 'object' && !Array.isArray(value);
 
+/** `options` with `progress` as its onProgress; anything but an object is left for the callee to refuse. */
+const withProgress = (options, progress) =>
+  (progress && (options === undefined || isOptionsObject(options)) ? { ...options, onProgress: progress } : options);
+
 /**
- * subsurf's functions for a worker: `subdivide` (progress after each level) and the other
- * functions that take and return plain data. Spread it into a table of your own to add more.
+ * subsurf's functions for a worker: `subdivide` (progress after each level),
+ * `subdivideTriangles` (subsurf/three's work, for subdivideGeometryAsync: plain arrays, no
+ * three.js; progress after each level of its subdivide) and the other functions that take and
+ * return plain data. Spread it into a table of your own to add more.
  */
 export const functions = {
-  subdivide([mesh, options], { progress }) {
-    // Anything but an object is left for subdivide to refuse with its own message.
-    const withProgress = progress && (options === undefined || isOptionsObject(options));
-    return subsurf.subdivide(mesh, withProgress ? { ...options, onProgress: progress } : options);
-  },
+  subdivide: ([mesh, options], { progress }) => subsurf.subdivide(mesh, withProgress(options, progress)),
+  subdivideTriangles: ([input, options], { progress }) => subdivideTriangles(input, withProgress(options, progress)),
   predictCounts: ([mesh, options]) => subsurf.predictCounts(mesh, options),
   readObj: ([text]) => subsurf.readObj(text),
   writeObj: ([mesh]) => subsurf.writeObj(mesh),

@@ -62,9 +62,10 @@ export interface SubsurfWorker {
    */
   subdivide(mesh: SubdivideMesh, options?: SubdivideOptions, call?: CallOptions<SubdivideProgress>): Promise<SubdivideResult>;
   /**
-   * The thread's function `name` with `args`: subsurf's own (`subdivide`, `predictCounts`,
-   * `readObj`, `writeObj`, `toDrawable`, `edgeList`, `vertexNormals`, `shape`, `version`) or
-   * those your `spawn` script exposes. Arguments and results go by structured clone.
+   * The thread's function `name` with `args`: subsurf's own (`subdivide`, `subdivideTriangles`
+   * (what `subdivideGeometryAsync` of 'subsurf/three' calls), `predictCounts`, `readObj`,
+   * `writeObj`, `toDrawable`, `edgeList`, `vertexNormals`, `shape`, `version`) or those your
+   * `spawn` script exposes. Arguments and results go by structured clone.
    */
   call<Result = unknown>(name: string, args?: unknown[], call?: CallOptions): Promise<Result>;
   /** Stops the thread; calls not settled reject with an 'AbortError', later calls with an Error. */

@@ -1,7 +1,9 @@
 // The glTF page: a model on the left as GLTFLoader gives it, the same model on the right with
-// every mesh's geometry replaced by subsurf/three's subdivideGeometry, one camera for both. The
-// page only loads, clones and draws; every refined position, UV, normal, skin weight and morph
-// target comes from subdivideGeometry.
+// every mesh's geometry replaced by subsurf/three's subdivideGeometryAsync, one camera for both.
+// The page only loads, clones and draws; every refined position, UV, normal, skin weight and
+// morph target comes from subdivideGeometryAsync, which runs the work in a subsurf/worker thread
+// so that the page stays responsive: the status tells each level as it is done, and a job
+// superseded by a newer one (a slider moved again) is aborted.
 //
 // Each side has its own copy of the scene graph (SkeletonUtils.clone: a skinned mesh's clone is
 // bound to cloned bones) and its own material clones, so a change to one side (the cage
@@ -14,14 +16,16 @@
 // data-triangles-out, data-vertices-out, data-meshes, data-skinned (skinned meshes),
 // data-morphed (meshes with morph targets), data-animation (the playing clip's name, or ""),
 // data-subdivide-ms, data-cage ("full", "faint" or "hidden"), data-cage-edges and data-job (a
-// counter of drawn results); data-busy="true" while loading or subdividing; data-error holds
-// the error message on screen, if any. window.subsurfGltf has the scenes, camera and renderer.
+// counter of drawn results); data-busy="true" while loading or subdividing, #busy-text saying
+// how far ("level k/n"); data-aborted counts superseded jobs aborted; data-error holds the error
+// message on screen, if any. window.subsurfGltf has the scenes, camera and renderer.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 import * as SkeletonUtils from 'three/addons/utils/SkeletonUtils.js';
-import { subdivideGeometry } from 'subsurf/three';
+import { subdivideGeometryAsync } from 'subsurf/three';
+import { createWorker } from 'subsurf/worker';
 import { schemeNames, version } from 'subsurf';
 
 const $ = (id) => document.getElementById(id);
@@ -56,6 +60,9 @@ const SCHEME_LABELS = {
 };
 
 const count = (n) => Number(n).toLocaleString('en-US');
+
+/** The thread every subdivision runs in; its .wasm and script come from beside subsurf/worker. */
+const worker = createWorker();
 
 const state = {
   scheme: 'catmull-clark',
@@ -305,18 +312,21 @@ function optionsFor(level) {
 class OverBudget extends Error {}
 
 /**
- * Subdivides every mesh of the model at `level`; throws OverBudget when the results would pass
- * MAX_TRIANGLES (the library says so before any work: maxFaces is the rest of the budget).
- * Returns the new geometries (null for a mesh subdivideGeometry refused, with why) and the time.
+ * Subdivides every mesh of the model at `level` in the worker, one after the other; throws
+ * OverBudget when the results would pass MAX_TRIANGLES (the library says so before any work:
+ * maxFaces is the rest of the budget), and the signal's AbortError when a newer job aborted this
+ * one. Returns the new geometries (null for a mesh subdivideGeometryAsync refused, with why) and
+ * the time.
  */
-function subdivideAll(level) {
+async function subdivideAll(level, signal) {
   const made = [];
   const refused = [];
   let remaining = MAX_TRIANGLES;
   let ms = 0;
   const perFace = TRIANGLE_SCHEMES.has(state.scheme) ? 1 : 2;
+  const meshes = model.meshes;
   try {
-    for (const { source } of model.meshes) {
+    for (const [i, { source }] of meshes.entries()) {
       const geometry = source.geometry;
       geometry.computeBoundingSphere();
       const options = {
@@ -326,23 +336,26 @@ function subdivideAll(level) {
         // welding within a millionth of the mesh's size closes such seams and nothing else.
         weld: geometry.boundingSphere.radius * 1e-6,
       };
+      const which = meshes.length > 1 ? ` mesh ${i + 1}/${meshes.length}` : '';
+      setBusy(`Subdividing${which}…`);
+      const onProgress = (p) => setBusy(`Subdividing${which}… level ${p.level}/${p.levels}`);
       const start = performance.now();
       let result = null;
       try {
-        result = subdivideGeometry(geometry, options);
+        result = await subdivideGeometryAsync(geometry, options, { worker, signal, onProgress });
       } catch (error) {
+        if (signal.aborted) throw error;
         if (/would make .* faces, more than the limit/.test(error.message)) throw new OverBudget(error.message);
         refused.push(`${source.name || 'a mesh'}: ${error.message}`);
       }
       ms += performance.now() - start;
       if (result) {
+        made.push(result);
         remaining -= triangleCount(result);
-        if (remaining < 0) {
-          result.dispose();
-          throw new OverBudget(`more than ${count(MAX_TRIANGLES)} triangles`);
-        }
+        if (remaining < 0) throw new OverBudget(`more than ${count(MAX_TRIANGLES)} triangles`);
+      } else {
+        made.push(null);
       }
-      made.push(result);
     }
   } catch (error) {
     for (const geometry of made) geometry?.dispose();
@@ -351,30 +364,35 @@ function subdivideAll(level) {
   return { made, refused, ms };
 }
 
-let requests = 0;
-/** Resolves after the next frame is painted: the busy indicator shows before a long call. */
-const nextPaint = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+/** The job running (its AbortController), if any: a newer job aborts it. */
+let running = null;
+let aborted = 0;
 
 /**
- * Subdivides the model with the controls' options and shows the result on the right. The call
- * runs on this thread; it waits for the busy indicator to be painted first, and a newer request
- * made meanwhile (a slider dragged on) replaces it.
+ * Subdivides the model with the controls' options, in the worker, and shows the result on the
+ * right. A newer request made meanwhile (a slider dragged on, another model) aborts this one.
  */
 async function subdivideModel() {
   if (!model) return;
-  const request = ++requests;
+  if (running) {
+    running.abort();
+    root.dataset.aborted = String(++aborted);
+  }
+  const controller = new AbortController();
+  running = controller;
+  const { signal } = controller;
   setBusy('Subdividing…');
-  await nextPaint();
-  if (request !== requests || !model) return;
   let level = state.level;
   let outcome = null;
   let notice = '';
   for (; level >= 0; level--) {
     try {
-      outcome = subdivideAll(level);
+      outcome = await subdivideAll(level, signal);
       break;
     } catch (error) {
+      if (signal.aborted) return; // the newer job shows its own state
       if (!(error instanceof OverBudget)) {
+        running = null;
         setBusy(null);
         showMessage(`${model.name}: not subdivided: ${error.message ?? error}`, 'error');
         return;
@@ -382,6 +400,11 @@ async function subdivideModel() {
       notice ||= `Level ${state.level} would draw more than ${count(MAX_TRIANGLES)} triangles; showing level ${level - 1}.`;
     }
   }
+  if (signal.aborted) {
+    for (const geometry of outcome?.made ?? []) geometry?.dispose();
+    return;
+  }
+  running = null;
   if (!outcome) {
     setBusy(null);
     showMessage(`${model.name}: even level 0 is over ${count(MAX_TRIANGLES)} triangles; nothing subdivided.`, 'error');
@@ -419,7 +442,8 @@ async function subdivideModel() {
   if (model.clip) parts.push(`playing "${model.clip.name || 'animation 0'}"`);
   showMessage([`${model.name}: ${parts.join(', ')}.`, ...notices].join('\n'), notices.length ? 'notice' : '');
   requestRender(() => {
-    setBusy(null);
+    // A job started since keeps its own busy state.
+    if (!running) setBusy(null);
     Object.assign(root.dataset, {
       model: model.name,
       scheme: state.scheme,

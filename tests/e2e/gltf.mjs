@@ -18,8 +18,10 @@
 //     own bones, keeps its morph target, and follows the animation as the original does (their
 //     skinned bounding boxes at a posed time agree, and differ from the rest pose);
 //   - a dense model (more than 20,000 cage edges): the cage is drawn faint, the surface's colour
-//     dominates the right viewport; level 4 is over the page's 2M-triangle guard and level 3 is
-//     shown with a message;
+//     dominates the right viewport; while level 3 is made in the worker the status tells "level
+//     1/3" and the page takes a slider move to level 1, which aborts the job (the level-1 result
+//     is the next drawn); level 4 is over the page's 2M-triangle guard and level 3 is shown with
+//     a message;
 //   - the WebGL2 page (index.html) with a dense OBJ grid: its cage no longer covers the surface
 //     (most drawn pixels are the surface's orange, not the cage's blue);
 //   - no page or console errors, other than the refused .gltf's failed request.
@@ -272,7 +274,7 @@ try {
   check('knot.glb: 1024 input triangles (TorusKnotGeometry 64 × 8)', knotTriangles === 1024, data.trianglesIn);
   check('knot.glb: Loop level 2 gives 16 × the triangles', Number(data.trianglesOut) === 16 * knotTriangles, data.trianglesOut);
   check('knot.glb: the counts are on screen', (await page.locator('#triangles-out').textContent()) === (16 * knotTriangles).toLocaleString('en-US'));
-  check('knot.glb: the time of subdivideGeometry is given', Number(data.subdivideMs) > 0, data.subdivideMs);
+  check('knot.glb: the time of subdivideGeometryAsync is given', Number(data.subdivideMs) > 0, data.subdivideMs);
   await page.uncheck('#cage');
   await page.waitForFunction(() => document.documentElement.dataset.cage === 'hidden');
   await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
@@ -406,6 +408,33 @@ try {
   stats = await shot('dense-cage-faint');
   check('dense.glb: the surface\'s orange, not the cage\'s blue, fills the right viewport', stats.blue < 0.2 * stats.drawn,
     `${stats.blue} blue of ${stats.drawn} drawn pixels`);
+  // The work runs in a worker: while level 3 is being made the page shows its progress and
+  // handles the slider, whose move aborts the job (the observer moves it, inside the page, as
+  // soon as level 1 of 3 is told: before the job can end).
+  const beforeSupersede = await dataset();
+  await page.evaluate(() => {
+    const text = document.getElementById('busy-text');
+    window.busyTexts = [];
+    const observer = new MutationObserver(() => {
+      window.busyTexts.push(text.textContent);
+      if (text.textContent.endsWith('level 1/3') && !window.superseded) {
+        window.superseded = true;
+        const level = document.getElementById('level');
+        level.value = '1';
+        level.dispatchEvent(new Event('input', { bubbles: true }));
+      }
+    });
+    observer.observe(text, { childList: true, characterData: true, subtree: true });
+    window.stopObserving = () => observer.disconnect();
+  });
+  await setLevel(3);
+  data = await shows(beforeSupersede.job, { model: 'dense.glb', level: 1, requestedLevel: 1 }, 'dense.glb level 3, superseded by level 1');
+  const busyTexts = await page.evaluate(() => { window.stopObserving(); return window.busyTexts; });
+  check('dense.glb level 3: the status tells the job\'s progress ("level 1/3")', busyTexts.includes('Subdividing… level 1/3'), busyTexts.join(' | '));
+  check('dense.glb: the slider moved during the job aborts it; the level-1 result is the next drawn',
+    Number(data.job) === Number(beforeSupersede.job) + 1 && Number(data.aborted ?? 0) === Number(beforeSupersede.aborted ?? 0) + 1 &&
+    Number(data.trianglesOut) === 4 * Number(data.trianglesIn),
+    `job ${beforeSupersede.job} → ${data.job}, aborted ${beforeSupersede.aborted ?? 0} → ${data.aborted}, ${data.trianglesOut} triangles`);
   await setLevel(4);
   data = await shows(data.job, { model: 'dense.glb', requestedLevel: 4 }, 'dense.glb level 4');
   check('dense.glb level 4: over the 2M-triangle guard, level 3 shown with a message',

@@ -12,7 +12,10 @@
 //     cube is rounded (the corners show the background);
 //   - a two-texel texture (red | green, nearest) through the face's UVs: the left half red, the
 //     right half green (UVs refined per face, seams kept);
-//   - MeshNormalMaterial: the face's centre faces the camera, (128, 128, 255) (limit normals).
+//   - MeshNormalMaterial: the face's centre faces the camera, (128, 128, 255) (limit normals);
+// then subdivideGeometryAsync in a module Web Worker (/pkg/worker.js): byte for byte the
+// geometry subdivideGeometry makes (groups, creases, quads, Loop, morphs), the input whole,
+// progress per level, abort, the sync call's error message.
 // Exits non-zero on failure.
 import { createServer } from 'node:http';
 import { existsSync, readFileSync, statSync } from 'node:fs';
@@ -135,6 +138,63 @@ try {
   check('texture through the UVs: left red, right green', near(result.textured[0], RED) && near(result.textured[1], GREEN) &&
     near(result.textured[2], RED) && near(result.textured[3], GREEN), JSON.stringify(result.textured));
   check('MeshNormalMaterial: the centre faces the camera', near(result.normals[0], [128, 128, 255], 3), JSON.stringify(result.normals));
+
+  // subdivideGeometryAsync: subdivideTriangles in a module Web Worker (which has no import map:
+  // it would fail to load if the worker script reached 'three').
+  const inWorker = await page.evaluate(async () => {
+    const THREE = await import('three');
+    const { subdivideGeometry, subdivideGeometryAsync } = await import('/pkg/three.js');
+    const { createWorker } = await import('/pkg/worker.js');
+    const worker = createWorker();
+    const bytes = (a) => new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+    const sameArray = (a, b) => a.constructor === b.constructor && a.length > 0 && a.byteLength === b.byteLength &&
+      bytes(a).every((v, i) => v === bytes(b)[i]);
+    /** The differences between two geometries (attributes, index, groups, morphs, userData), by name. */
+    const differences = (a, b) => {
+      const out = [];
+      const names = Object.keys(a.attributes);
+      if (names.sort().join() !== Object.keys(b.attributes).sort().join()) out.push('attribute names');
+      for (const name of names) if (!sameArray(a.attributes[name].array, b.attributes[name]?.array ?? new Float32Array())) out.push(name);
+      if (!sameArray(a.index.array, b.index.array)) out.push('index');
+      if (JSON.stringify(a.groups) !== JSON.stringify(b.groups)) out.push('groups');
+      for (const [name, list] of Object.entries(a.morphAttributes)) {
+        list.forEach((t, i) => { if (!sameArray(t.array, b.morphAttributes[name]?.[i]?.array ?? new Float32Array())) out.push(`morph ${name}[${i}]`); });
+      }
+      if (JSON.stringify(a.userData) !== JSON.stringify(b.userData) || a.name !== b.name) out.push('userData/name');
+      return out;
+    };
+    const box = new THREE.BoxGeometry(2, 2, 2, 2, 2, 2);
+    box.userData = { from: 'e2e' };
+    const knot = new THREE.TorusKnotGeometry(1, 0.3, 64, 8);
+    const morphed = new THREE.TorusKnotGeometry(1, 0.3, 32, 6);
+    morphed.morphAttributes.position = [morphed.getAttribute('position').clone()];
+    morphed.morphAttributes.normal = [morphed.getAttribute('normal').clone()];
+    const cases = [[box, { levels: 2 }], [box, { levels: 2, creaseAngle: 0.5, quads: true }], [knot, { levels: 2, scheme: 'loop' }], [morphed, { levels: 1 }]];
+    const diffs = [];
+    for (const [geometry, options] of cases) {
+      const lengths = Object.values(geometry.attributes).map((a) => a.array.length).join();
+      const async = await subdivideGeometryAsync(geometry, options, { worker });
+      diffs.push(...differences(async, subdivideGeometry(geometry, options)));
+      if (Object.values(geometry.attributes).map((a) => a.array.length).join() !== lengths) diffs.push('input detached');
+    }
+    const levels = [];
+    await subdivideGeometryAsync(knot, { levels: 3 }, { worker, onProgress: (p) => levels.push(`${p.level}/${p.levels}`) });
+    const controller = new AbortController();
+    const aborted = await subdivideGeometryAsync(new THREE.TorusKnotGeometry(1, 0.3, 256, 32), { levels: 6, maxFaces: 1e9, maxBytes: 8e9 }, {
+      worker, signal: controller.signal, onProgress: () => controller.abort(),
+    }).then(() => 'resolved', (error) => error.name);
+    const after = differences(await subdivideGeometryAsync(box, { levels: 1 }, { worker }), subdivideGeometry(box, { levels: 1 }));
+    let noPosition = '';
+    await subdivideGeometryAsync(new THREE.BufferGeometry(), {}, { worker }).catch((error) => { noPosition = error.message; });
+    worker.terminate();
+    return { cases: cases.length, diffs, levels, aborted, after, noPosition };
+  });
+  check(`subdivideGeometryAsync in a Web Worker = subdivideGeometry byte for byte (${inWorker.cases} geometries), input whole`,
+    inWorker.diffs.length === 0, inWorker.diffs.join(', '));
+  check('subdivideGeometryAsync: progress 1/3, 2/3, 3/3', inWorker.levels.join() === '1/3,2/3,3/3', inWorker.levels.join());
+  check('subdivideGeometryAsync: abort rejects with an AbortError; the next call is right', inWorker.aborted === 'AbortError' && inWorker.after.length === 0,
+    `${inWorker.aborted}; ${inWorker.after.join(', ')}`);
+  check('subdivideGeometryAsync: no position rejects with subdivideGeometry\'s message', /no 'position' attribute/.test(inWorker.noPosition), inWorker.noPosition);
   check('no page errors', errors.length === 0, errors.join('; '));
 } finally {
   await browser.close();

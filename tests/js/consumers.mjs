@@ -5,8 +5,9 @@
 // `npm install`s the tarball there (and `three`, the repo's pinned version, where subsurf/three is
 // used), builds it with no configuration of ours, and checks that it subdivides a cube with no
 // init() call: Catmull-Clark level 2 gives 98 vertices and 96 quads, subsurf/three's
-// subdivideGeometry of the cube's 12 triangles (quads: true) gives 98 vertices, 192 triangles,
-// and subsurf/worker gives the main thread's result byte for byte, telling levels 1 and 2 (in
+// subdivideGeometry of the cube's 12 triangles (quads: true) gives 98 vertices, 192 triangles
+// (and subdivideGeometryAsync the same geometry byte for byte, from a worker, telling levels 1
+// and 2), and subsurf/worker gives the main thread's result byte for byte, telling levels 1 and 2 (in
 // Node through worker_threads; in the bundlers with no configuration: the worker script and the
 // .wasm are found through their `new URL(..., import.meta.url)`).
 //   node     a Node project with only the tarball: import { subdivide } from 'subsurf'
@@ -34,7 +35,8 @@ const bin = (name) => join(root, 'node_modules', '.bin', name);
 const keep = process.argv.includes('--keep');
 const threeVersion = JSON.parse(readFileSync(join(root, 'node_modules', 'three', 'package.json'), 'utf8')).version;
 const version = JSON.parse(readFileSync(join(pkgDir, 'package.json'), 'utf8')).version;
-const EXPECTED = { version, vertices: 98, faces: 96, geometryVertices: 98, geometryTriangles: 192, initAgain: 24, worker: 'same', workerProgress: '1,2' };
+const EXPECTED = { version, vertices: 98, faces: 96, geometryVertices: 98, geometryTriangles: 192, initAgain: 24, worker: 'same', workerProgress: '1,2',
+  geometryAsync: 'same', geometryAsyncProgress: '1,2' };
 
 const scratch = mkdtempSync(join(tmpdir(), 'subsurf-consumers-'));
 process.on('exit', () => {
@@ -88,7 +90,7 @@ const inWorker = worker.subdivide(cube, { levels: 2 }, { onProgress: (p) => work
 }, (error) => ({ worker: String(error) }));
 `;
 const APP = `import init, { subdivide, version } from 'subsurf';
-import { subdivideGeometry } from 'subsurf/three';
+import { subdivideGeometry, subdivideGeometryAsync } from 'subsurf/three';
 import { createWorker } from 'subsurf/worker';
 import { BufferAttribute, BufferGeometry } from 'three';
 
@@ -106,9 +108,24 @@ const smooth = subdivideGeometry(geometry, { levels: 2, quads: true });
 result.geometryVertices = smooth.getAttribute('position').count;
 result.geometryTriangles = smooth.index.count / 3;
 
-Promise.all([init(), inWorker]).then(([, fromWorker]) => {
+// The same in a worker (subdivideTriangles in the worker bundle, three only here): byte for byte.
+const geometryWorker = createWorker();
+const geometryLevels = [];
+const sameArray = (a, b) => a.constructor === b.constructor && a.length === b.length && a.length > 0 && a.every((v, i) => Object.is(v, b[i]));
+const inWorkerGeometry = subdivideGeometryAsync(geometry, { levels: 2, quads: true }, {
+  worker: geometryWorker,
+  onProgress: (p) => geometryLevels.push(p.level),
+}).then((g) => {
+  geometryWorker.terminate();
+  const names = Object.keys(smooth.attributes);
+  const same = names.join() === Object.keys(g.attributes).join() &&
+    names.every((name) => sameArray(g.attributes[name].array, smooth.attributes[name].array)) && sameArray(g.index.array, smooth.index.array);
+  return { geometryAsync: same ? 'same' : 'different', geometryAsyncProgress: geometryLevels.join(',') };
+}, (error) => ({ geometryAsync: String(error) }));
+
+Promise.all([init(), inWorker, inWorkerGeometry]).then(([, fromWorker, fromGeometryWorker]) => {
   result.initAgain = subdivide(cube, { levels: 1 }).faceSizes.length;
-  Object.assign(result, fromWorker);
+  Object.assign(result, fromWorker, fromGeometryWorker);
   document.getElementById('out').textContent = JSON.stringify(result);
   window.__subsurf = result;
 }, (error) => { window.__subsurf = { error: String(error) }; });

@@ -27,7 +27,8 @@ const started = performance.now();
 
 async function check(name, fn) {
   try {
-    await fn();
+    const detail = await fn();
+    if (detail) console.log(`three: ${name}: ${detail}`);
     checks++;
   } catch (error) {
     console.error(`three: FAILED ${name}\n${error.stack ?? error}`);
@@ -51,9 +52,11 @@ writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }))
 writeFileSync(
   join(scratch, 'consumer.mjs'),
   "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
-    "export { subdivideGeometry } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n",
+    "export { subdivideGeometry, subdivideGeometryAsync } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n" +
+    "export { createWorker } from 'subsurf/worker';\n",
 );
-const { THREE, GLTFLoader, subdivideGeometry, subsurf } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+const { THREE, GLTFLoader, subdivideGeometry, subdivideGeometryAsync, createWorker, subsurf } =
+  await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
 const { shape, subdivide, toDrawable } = subsurf;
 const threeVersion = JSON.parse(readFileSync(join(threeDir, 'package.json'), 'utf8')).version;
 
@@ -678,6 +681,224 @@ await check('the web entry without init() says to call init()', () => {
   const run = spawnSync(process.execPath, ['--input-type=module', '-e', script], { cwd: scratch, encoding: 'utf8' });
   assert.match(run.stdout, /not initialised: in a browser call `await init\(\)`/, run.stdout + run.stderr);
 });
+
+// ---- subdivideGeometryAsync: the same work in a worker_threads thread (subsurf/worker)
+
+/**
+ * Asserts that two BufferGeometries are the same: name, userData, every attribute (kind,
+ * itemSize, normalized, name, array type and bytes), index, groups, morph targets.
+ */
+function assertSameGeometry(a, b, what) {
+  const bytes = (array) => Buffer.from(array.buffer, array.byteOffset, array.byteLength);
+  const sameAttribute = (x, y, where) => {
+    assert.ok(x && y, `${where}: present in both`);
+    assert.equal(x.itemSize, y.itemSize, `${where}: itemSize`);
+    assert.equal(x.normalized, y.normalized, `${where}: normalized`);
+    assert.equal(x.name, y.name, `${where}: name`);
+    assert.equal(Boolean(x.isInstancedBufferAttribute), Boolean(y.isInstancedBufferAttribute), `${where}: instanced`);
+    assert.equal(x.array.constructor, y.array.constructor, `${where}: array type`);
+    assert.ok(x.array.length > 0, `${where}: not empty`);
+    assert.ok(bytes(x.array).equals(bytes(y.array)), `${where}: bytes differ`);
+  };
+  assert.equal(a.name, b.name, `${what}: name`);
+  assert.deepEqual(a.userData, b.userData, `${what}: userData`);
+  assert.deepEqual(Object.keys(a.attributes).sort(), Object.keys(b.attributes).sort(), `${what}: attribute names`);
+  for (const name of Object.keys(a.attributes)) sameAttribute(a.attributes[name], b.attributes[name], `${what}: attribute '${name}'`);
+  sameAttribute(a.index, b.index, `${what}: index`);
+  assert.deepEqual(a.groups, b.groups, `${what}: groups`);
+  assert.equal(a.morphTargetsRelative, b.morphTargetsRelative, `${what}: morphTargetsRelative`);
+  assert.deepEqual(Object.keys(a.morphAttributes).sort(), Object.keys(b.morphAttributes).sort(), `${what}: morph attribute names`);
+  for (const [name, list] of Object.entries(a.morphAttributes)) {
+    assert.equal(list.length, b.morphAttributes[name].length, `${what}: morph ${name} targets`);
+    list.forEach((target, i) => sameAttribute(target, b.morphAttributes[name][i], `${what}: morph ${name}[${i}]`));
+  }
+}
+
+/** A torus with seams split as glTF does, a skin of three bones and two named morph targets. */
+function skinnedMorphedTorus(relative) {
+  const geometry = gltfGeometry(shape('torus'));
+  const p = geometry.getAttribute('position');
+  const skinIndex = new Uint16Array(4 * p.count), skinWeight = new Float32Array(4 * p.count);
+  const grow = new Float32Array(3 * p.count), lift = new Float32Array(3 * p.count);
+  for (let v = 0; v < p.count; v++) {
+    const a = (Math.atan2(p.getZ(v), p.getX(v)) / Math.PI + 1) * 1.5; // 0..3 around the axis
+    const bone = Math.min(2, Math.floor(a)), f = a - bone;
+    skinIndex.set([bone, (bone + 1) % 3, 0, 0], 4 * v);
+    skinWeight.set([1 - f, f, 0, 0], 4 * v);
+    for (let k = 0; k < 3; k++) grow[3 * v + k] = (relative ? 0 : p.array[3 * v + k]) + 0.2 * p.array[3 * v + k];
+    lift.set(relative ? [0, 0.5, 0] : [p.getX(v), p.getY(v) + 0.5, p.getZ(v)], 3 * v);
+  }
+  geometry.setAttribute('skinIndex', new THREE.Uint16BufferAttribute(skinIndex, 4));
+  geometry.setAttribute('skinWeight', new THREE.Float32BufferAttribute(skinWeight, 4));
+  geometry.morphAttributes.position = [new THREE.BufferAttribute(grow, 3), new THREE.BufferAttribute(lift, 3)];
+  geometry.morphAttributes.position[0].name = 'grow';
+  geometry.morphAttributes.position[1].name = 'lift';
+  geometry.morphAttributes.normal = [new THREE.BufferAttribute(new Float32Array(3 * p.count), 3), new THREE.BufferAttribute(new Float32Array(3 * p.count), 3)];
+  geometry.morphAttributes.normal[1].name = 'lift normals';
+  geometry.morphTargetsRelative = relative;
+  geometry.name = 'torus';
+  geometry.userData = { source: 'test', nested: { list: [1, 2] } };
+  return geometry;
+}
+
+/** Cube positions and UVs in one interleaved buffer, a normalized Uint8 colour, an instanced offset. */
+function interleavedCube() {
+  const plain = gltfGeometry(shape('cube'));
+  const n = plain.getAttribute('position').count;
+  const buffer = new THREE.InterleavedBuffer(new Float32Array(5 * n), 5);
+  for (let v = 0; v < n; v++) {
+    buffer.array.set(plain.getAttribute('position').array.subarray(3 * v, 3 * v + 3), 5 * v);
+    buffer.array.set(plain.getAttribute('uv').array.subarray(2 * v, 2 * v + 2), 5 * v + 3);
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setIndex(new THREE.Uint16BufferAttribute(plain.index.array, 1));
+  geometry.setAttribute('position', new THREE.InterleavedBufferAttribute(buffer, 3, 0));
+  geometry.setAttribute('uv', new THREE.InterleavedBufferAttribute(buffer, 2, 3));
+  const color = new Uint8Array(3 * n);
+  for (let v = 0; v < n; v++) color.set([255, (40 * v) % 256, 51], 3 * v);
+  geometry.setAttribute('color', new THREE.BufferAttribute(color, 3, true));
+  geometry.setAttribute('offset', new THREE.InstancedBufferAttribute(new Float32Array([0, 0, 0, 1, 1, 1]), 3));
+  return geometry;
+}
+
+/** A view into a larger buffer, as a glTF file's accessors are: only the view may be copied. */
+function viewGeometry() {
+  const box = new THREE.BoxGeometry(2, 2, 2, 2, 2, 2);
+  const p = box.getAttribute('position').array;
+  const big = new Float32Array(p.length + 1000);
+  big.set(p, 500);
+  box.setAttribute('position', new THREE.BufferAttribute(big.subarray(500, 500 + p.length), 3));
+  return box;
+}
+
+const worker = createWorker();
+const rejection = (promise) => promise.then((value) => assert.fail(`resolved with ${value}`), (error) => error);
+
+await check('subdivideGeometryAsync = subdivideGeometry, byte for byte (seams, groups, morphs, skin, interleaved, views, options)', async () => {
+  const box = new THREE.BoxGeometry(2, 2, 2, 2, 2, 2);
+  const knot = new THREE.TorusKnotGeometry(1, 0.3, 64, 8);
+  const creases = { edges: new Uint32Array([0, 1, 1, 2]), sharpness: new Float32Array([10, 2]) };
+  const cases = [
+    ['torus, glTF seams, quads', gltfGeometry(shape('torus')), { levels: 2, quads: true }],
+    ['house, glTF seams, Loop, limit', gltfGeometry(shape('house')), { scheme: 'loop', levels: 2, limit: true, fvarLinear: 'none' }],
+    ['BoxGeometry, 6 groups', box, { levels: 2 }],
+    ['BoxGeometry, groups, sharpNormalSplits, faces normals', box, { levels: 2, sharpNormalSplits: true, normals: 'faces' }],
+    ['BoxGeometry, sqrt3 with groups', box, { scheme: 'sqrt3', levels: 2 }],
+    ['BoxGeometry non-indexed, creaseAngle', new THREE.BoxGeometry().toNonIndexed(), { levels: 1, creaseAngle: 0.5 }],
+    ['TorusKnotGeometry, creases and holes in the options', knot, { levels: 1, creases, holes: new Uint32Array([3, 4]) }],
+    ['skinned, morphed torus (relative)', skinnedMorphedTorus(true), { levels: 2, quads: true }],
+    ['skinned, morphed torus (absolute)', skinnedMorphedTorus(false), { levels: 1, scheme: 'loop' }],
+    ['interleaved, normalized, instanced, Uint16 index', interleavedCube(), { levels: 2 }],
+    ['a view into a larger buffer', viewGeometry(), { levels: 1, normals: false }],
+  ];
+  for (const [what, geometry, options] of cases) {
+    const before = snapshot(geometry);
+    const optionsBefore = structuredClone(options);
+    const sync = subdivideGeometry(geometry, options);
+    const async = await subdivideGeometryAsync(geometry, options, { worker });
+    assertSameGeometry(async, sync, what);
+    // Nothing of the caller's was detached by the transfer or written: the input's arrays and
+    // the options' arrays are whole and unchanged.
+    assertUnchanged(geometry, before);
+    assert.deepEqual(options, optionsBefore, `${what}: options unchanged`);
+  }
+  assert.ok(creases.edges.length === 4 && creases.sharpness.length === 2, 'the options\' arrays are not detached');
+  return `${cases.length} geometries`;
+});
+
+await check('subdivideGeometryAsync: progress after each level, in order, as subdivideGeometry\'s onProgress tells it', async () => {
+  const geometry = skinnedMorphedTorus(true); // morph normals: extra subdivide passes, which tell nothing
+  const expected = [];
+  subdivideGeometry(geometry, { levels: 3, quads: true, onProgress: (p) => expected.push(p) });
+  assert.deepEqual(expected.map((p) => `${p.level}/${p.levels}`), ['1/3', '2/3', '3/3'], 'sync: once per level');
+  const told = [];
+  const out = await subdivideGeometryAsync(geometry, { levels: 3, quads: true }, { worker, onProgress: (p) => told.push(p) });
+  assert.deepEqual(told, expected);
+  assert.ok(out.morphAttributes.normal.length === 2);
+  // options.onProgress works too (functions cannot be posted: it stays here).
+  const fromOptions = [];
+  await subdivideGeometryAsync(geometry, { levels: 2, onProgress: (p) => fromOptions.push(p.level) }, { worker });
+  assert.deepEqual(fromOptions, [1, 2]);
+});
+
+await check('subdivideGeometryAsync: abort rejects with an AbortError, the next call works', async () => {
+  const big = new THREE.TorusKnotGeometry(1, 0.3, 256, 32);
+  const controller = new AbortController();
+  const seen = [];
+  const error = await rejection(subdivideGeometryAsync(big, { levels: 6, maxFaces: 1e9, maxBytes: 8e9 }, {
+    worker,
+    signal: controller.signal,
+    onProgress: ({ level }) => {
+      seen.push(level);
+      if (level === 1) controller.abort();
+    },
+  }));
+  assert.ok(error instanceof DOMException && error.name === 'AbortError', `${error}`);
+  assert.deepEqual(seen, [1]);
+  assert.equal((await rejection(subdivideGeometryAsync(big, { levels: 1 }, { worker, signal: AbortSignal.abort() }))).name, 'AbortError');
+  const box = new THREE.BoxGeometry();
+  assertSameGeometry(await subdivideGeometryAsync(box, { levels: 2 }, { worker }), subdivideGeometry(box, { levels: 2 }), 'after the abort');
+  // What onProgress throws rejects the call with it.
+  const thrown = await rejection(subdivideGeometryAsync(box, { levels: 3 }, { worker, onProgress: () => { throw new RangeError('stop'); } }));
+  assert.equal(thrown.message, 'stop');
+});
+
+await check('subdivideGeometryAsync: bad input rejects with subdivideGeometry\'s message', async () => {
+  const syncMessage = (geometry, options) => {
+    try {
+      subdivideGeometry(geometry, options);
+    } catch (error) {
+      return error.message;
+    }
+    assert.fail('subdivideGeometry did not throw');
+  };
+  const noPosition = new THREE.BufferGeometry();
+  noPosition.setAttribute('uv', new THREE.Float32BufferAttribute([0, 0, 1, 0, 0, 1], 2));
+  const odd = new THREE.BufferGeometry();
+  odd.setAttribute('position', new THREE.Float32BufferAttribute([0, 0, 0, 1, 0, 0, 0, 1, 0], 3));
+  odd.setIndex([0, 1, 7]);
+  const nan = new THREE.BufferGeometry();
+  nan.setAttribute('position', new THREE.Float32BufferAttribute([0, 0, 0, 1, 0, NaN, 0, 1, 0], 3));
+  const box = new THREE.BoxGeometry();
+  const cases = [
+    [noPosition, {}, /no 'position' attribute; it has 'uv'/],
+    [odd, {}, /index\[2\] is 7, but the geometry has only 3 vertices/], // checked in the thread
+    [nan, {}, /position of vertex 1 is not finite/],
+    [box, { level: 2 }, /unknown option 'level'/],
+    [box, { quads: true, scheme: 'loop' }, /'loop' takes triangles only/],
+    [box, { creaseAngle: 30 }, /creaseAngle is in radians/],
+    [box, { levels: 12, maxFaces: 100 }, /more than the limit/],
+    [new THREE.Mesh(box), {}, /a Mesh: pass mesh\.geometry/],
+  ];
+  for (const [geometry, options, pattern] of cases) {
+    const message = syncMessage(geometry, options);
+    assert.match(message, pattern);
+    const error = await rejection(subdivideGeometryAsync(geometry, options, { worker }));
+    assert.ok(error instanceof Error, `${error}`);
+    assert.equal(error.message, message);
+  }
+  assert.match((await rejection(subdivideGeometryAsync(box, { levels: 1 }))).message,
+    /subdivideGeometryAsync: the third argument must be \{ worker \}.*createWorker\(\) of 'subsurf\/worker'.*got undefined/);
+  assert.match((await rejection(subdivideGeometryAsync(box, {}, { signal: AbortSignal.timeout(1000) }))).message, /got an object without a worker/);
+  const unclonable = await rejection(subdivideGeometryAsync(box, { levels: 1, holes: { toString: () => 'x', f() {} } }, { worker }));
+  assert.ok(unclonable instanceof TypeError && /options cannot be sent to a worker/.test(unclonable.message), `${unclonable}`);
+  assert.ok((await subdivideGeometryAsync(box, { levels: 1 }, { worker })).index.count > 0, 'the worker goes on');
+});
+
+await check('subdivideGeometryAsync: a big geometry, times on this machine (no assertion on them)', async () => {
+  const big = new THREE.TorusKnotGeometry(1, 0.3, 512, 64); // 65,536 triangles, seams
+  const options = { levels: 2, quads: true };
+  await subdivideGeometryAsync(big, { levels: 0 }, { worker }); // the thread is up
+  let start = performance.now();
+  const sync = subdivideGeometry(big, options);
+  const syncMs = performance.now() - start;
+  start = performance.now();
+  const async = await subdivideGeometryAsync(big, options, { worker });
+  const asyncMs = performance.now() - start;
+  assertSameGeometry(async, sync, 'big knot');
+  return `TorusKnotGeometry 512 × 64 (65,536 triangles) → ${sync.index.count / 3} triangles: sync ${syncMs.toFixed(0)} ms, async ${asyncMs.toFixed(0)} ms`;
+});
+worker.terminate();
 
 // ---- TypeScript declarations, with @types/three
 if (threeArg < 0) await check('tsc on tests/js/three_types_check.ts with @types/three', () => {
