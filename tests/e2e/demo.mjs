@@ -22,48 +22,19 @@
 // buffers, equal to the CPU's frame, with its time per frame shown. Screenshots go to
 // artifacts/. Exits non-zero on failure.
 import assert from 'node:assert/strict';
-import { createServer } from 'node:http';
-import { copyFileSync, mkdirSync, readFileSync, existsSync, statSync, writeFileSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
-import { chromium } from 'playwright-core';
+import { copyFileSync, mkdirSync, readFileSync, existsSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { launchChromium, pkg, root, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const artifacts = join(root, 'artifacts');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 // WebGPU through SwiftShader's Vulkan, as /work/shared/toolchain.md says, plus what drawing to a
 // WebGPU canvas needs headless: SwiftShader for Vulkan and for ANGLE (WebGL), so that the
 // canvas's images can be shared with the compositor. Without those three the GPU process loses
 // the device at the first canvas frame ("Could not find SharedImageBackingFactory ...
 // WebgpuSwapChainTexture"); compute alone works either way.
-const WEBGPU_ARGS = ['--no-sandbox', '--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan',
-  '--use-vulkan=swiftshader', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.mjs': 'text/javascript; charset=utf-8',
-  '.wasm': 'application/wasm',
-  '.css': 'text/css; charset=utf-8',
-  '.json': 'application/json',
-  '.ts': 'text/plain; charset=utf-8',
-};
-
-/** A static server for www/, with /pkg/ served from the built package. */
-function serve() {
-  const server = createServer((request, response) => {
-    const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
-    const [base, rest] = path.startsWith('/pkg/') ? [pkg, path.slice(5)] : [join(root, 'www'), path.slice(1)];
-    let file = normalize(join(base, rest || 'index.html'));
-    if (file !== base && !file.startsWith(base + sep)) return void response.writeHead(403).end();
-    if (existsSync(file) && statSync(file).isDirectory()) file = join(file, 'index.html');
-    if (!existsSync(file)) return void response.writeHead(404).end('not found');
-    response.writeHead(200, { 'content-type': TYPES[extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-store' });
-    response.end(readFileSync(file));
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
+const WEBGPU_ARGS = ['--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan',
+  '--use-vulkan=swiftshader', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'];
 
 /** Counts pixels of a PNG (decoded by the page itself) that differ from the background. */
 async function analyze(page, png) {
@@ -139,15 +110,11 @@ async function run() {
   if (!existsSync(join(pkg, 'subsurf_bg.wasm'))) throw new Error(`${pkg} is not built; run scripts/build-pkg.sh`);
   mkdirSync(artifacts, { recursive: true });
   // DEMO_URL tests a page served elsewhere, e.g. by scripts/demo.sh.
-  const server = process.env.DEMO_URL ? null : await serve();
-  const url = process.env.DEMO_URL ?? `http://127.0.0.1:${server.address().port}/`;
+  // www/, with /pkg/ served from the built package.
+  const server = process.env.DEMO_URL ? null : await serveStatic({ routes: { '/pkg/': pkg, '/': join(root, 'www') } });
+  const url = process.env.DEMO_URL ?? `${server.origin}/`;
   console.log(`  testing ${url}`);
-  const browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    headless: true,
-    args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  const browser = await launchChromium({ args: ['--disable-gpu', '--enable-unsafe-swiftshader'] });
   const problems = [];
   const report = {};
   try {
@@ -807,7 +774,7 @@ async function run() {
  * shown, from timestamp queries and (with ?gpu-timing=work-done) from onSubmittedWorkDone.
  */
 async function checkWebGpu(url, problems, report) {
-  const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true, args: WEBGPU_ARGS });
+  const browser = await launchChromium({ args: WEBGPU_ARGS });
   try {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     page.on('pageerror', (error) => problems.push(`WebGPU page error: ${error.message}`));

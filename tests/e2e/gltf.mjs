@@ -26,52 +26,16 @@
 //     (most drawn pixels are the surface's orange, not the cage's blue);
 //   - no page or console errors, other than the refused .gltf's failed request.
 // Screenshots go to artifacts/gltf-*.png. Exits non-zero on failure.
-import { createServer } from 'node:http';
-import { existsSync, mkdirSync, readFileSync, statSync, writeFileSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { SWIFTSHADER_WEBGL, checks, collectErrors, launchChromium, pkg, root, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
-const three = join(root, 'node_modules', 'three');
-const www = join(root, 'www');
 const artifacts = join(root, 'artifacts');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.css': 'text/css; charset=utf-8',
-  '.wasm': 'application/wasm',
-  '.json': 'application/json',
-};
 /** A page that only maps three for the test's own exporting. */
 const EXPORT_PAGE = `<!doctype html><meta charset="utf-8"><title>export</title>
 <script type="importmap">{ "imports": { "three": "/vendor/three/build/three.module.js", "three/addons/": "/vendor/three/examples/jsm/" } }</script>`;
 
-function serve() {
-  const server = createServer((request, response) => {
-    const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
-    if (path === '/export.html') {
-      response.writeHead(200, { 'content-type': TYPES['.html'] });
-      return void response.end(EXPORT_PAGE);
-    }
-    const [base, rest] = path.startsWith('/pkg/') ? [pkg, path.slice(5)]
-      : path.startsWith('/vendor/three/') ? [three, path.slice(14)] : [www, path.slice(1)];
-    const file = normalize(join(base, rest || 'index.html'));
-    if (file !== base && !file.startsWith(base + sep)) return void response.writeHead(403).end();
-    if (!existsSync(file) || statSync(file).isDirectory()) return void response.writeHead(404).end('not found');
-    response.writeHead(200, { 'content-type': TYPES[extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-store' });
-    response.end(readFileSync(file));
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
-let failures = 0;
-function check(name, ok, detail) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}${detail !== undefined ? ` (${detail})` : ''}`);
-  if (!ok) failures++;
-}
+const { check, finish } = checks('gltf e2e');
 
 /**
  * Makes the test's models with three.js and its GLTFExporter, in the browser (the exporter
@@ -200,18 +164,15 @@ async function analyze(page, png, region) {
   }, { base64: png.toString('base64'), region });
 }
 
-const server = await serve();
-const origin = `http://127.0.0.1:${server.address().port}`;
-mkdirSync(artifacts, { recursive: true });
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+const server = await serveStatic({
+  pages: { '/export.html': EXPORT_PAGE },
+  routes: { '/pkg/': pkg, '/vendor/three/': join(root, 'node_modules', 'three'), '/': join(root, 'www') },
 });
+mkdirSync(artifacts, { recursive: true });
+const browser = await launchChromium({ args: SWIFTSHADER_WEBGL });
 try {
   const exportPage = await browser.newPage();
-  await exportPage.goto(`${origin}/export.html`);
+  await exportPage.goto(`${server.origin}/export.html`);
   const models = await makeModels(exportPage);
   await exportPage.close();
   const file = (name, base64, mimeType = 'model/gltf-binary') => ({ name, mimeType, buffer: Buffer.from(base64, 'base64') });
@@ -220,10 +181,8 @@ try {
   // The refused .gltf below makes two requests fail (its .bin and texture) and GLTFLoader say
   // so; those, and only those, are expected, whenever they arrive.
   const EXPECTED = /status of 404|Couldn't load texture box-texture0\.png|Failed to load buffer "box\.bin"/;
-  const errors = [];
+  const errors = collectErrors(page, { except: EXPECTED });
   const missed = [];
-  page.on('pageerror', (error) => errors.push(error.message));
-  page.on('console', (message) => { if (message.type() === 'error' && !EXPECTED.test(message.text())) errors.push(message.text()); });
   page.on('response', (response) => { if (response.status() === 404) missed.push(new URL(response.url()).pathname); });
   const dataset = () => page.evaluate(() => ({ ...document.documentElement.dataset }));
   /** Waits for a drawn result after `job` (the data-job before the change) matching `want`. */
@@ -253,7 +212,7 @@ try {
   const textureHues = (stats) => stats.hues.filter((n) => n > 0.03 * stats.drawn).length;
 
   // ---- the built-in model
-  await page.goto(`${origin}/gltf.html`);
+  await page.goto(`${server.origin}/gltf.html`);
   let data = await shows(undefined, { ready: true }, 'the built-in model');
   check('built-in model: no error', data.error === undefined && data.fatal === undefined, data.error ?? data.fatal);
   check('built-in model: Catmull-Clark with quads, level 2: 16 triangles per input triangle',
@@ -446,10 +405,8 @@ try {
 
   // ---- the WebGL2 page: a dense OBJ's cage does not cover its surface
   const main = await browser.newPage({ viewport: { width: 1280, height: 720 } });
-  const mainErrors = [];
-  main.on('pageerror', (error) => mainErrors.push(error.message));
-  main.on('console', (message) => { if (message.type() === 'error') mainErrors.push(message.text()); });
-  await main.goto(`${origin}/`);
+  const mainErrors = collectErrors(main);
+  await main.goto(`${server.origin}/`);
   await main.waitForFunction(() => document.documentElement.dataset.ready === 'true', null, { timeout: 120_000 });
   // A 110 × 110 grid of quads: 24,420 edges; level 1 keeps the job small.
   const N = 110;
@@ -481,8 +438,4 @@ try {
   await browser.close();
   server.close();
 }
-if (failures) {
-  console.error(`gltf e2e: ${failures} check(s) FAILED`);
-  process.exit(1);
-}
-console.log('gltf e2e: ok');
+finish();

@@ -26,71 +26,26 @@
 //     difference from the input's render where both cover under 10%, against over twice that
 //     with the UVs scrambled).
 // Exits non-zero on failure.
-import { createServer } from 'node:http';
-import { existsSync, readFileSync, statSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { SWIFTSHADER_WEBGL, checks, collectErrors, launchChromium, pkg, root, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
 const three = join(root, 'node_modules', 'three');
 const assets = join(root, 'node_modules', '@pmndrs', 'assets');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const MODEL = 'models/pmndrs.glb.js';
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.wasm': 'application/wasm',
-  '.json': 'application/json',
-};
 const PAGE = `<!doctype html><meta charset="utf-8"><title>subsurf glTF model test</title>
 <script type="importmap">{ "imports": { "three": "/three/build/three.module.js", "three/addons/": "/three/examples/jsm/" } }</script>
 <body style="margin:0"></body>`;
 
-/** Answers GET path: / is the page, /pkg/ the built package, /three/ three, /assets/ the model package. */
-function respond(path) {
-  if (path === '/') return { status: 200, type: TYPES['.html'], body: PAGE };
-  if (path === '/favicon.ico') return { status: 204, type: 'image/x-icon', body: '' };
-  for (const [prefix, dir] of [['/pkg/', pkg], ['/three/', three], ['/assets/', assets]]) {
-    if (!path.startsWith(prefix)) continue;
-    const file = normalize(join(dir, path.slice(prefix.length)));
-    if (!file.startsWith(dir + sep) || !existsSync(file) || statSync(file).isDirectory()) break;
-    return { status: 200, type: TYPES[extname(file)] ?? 'application/octet-stream', body: readFileSync(file) };
-  }
-  return { status: 404, type: 'text/plain', body: 'not found' };
-}
-
-function serve() {
-  const server = createServer((request, response) => {
-    const { status, type, body } = respond(decodeURIComponent(new URL(request.url, 'http://localhost').pathname));
-    response.writeHead(status, { 'content-type': type, 'cache-control': 'no-store' });
-    response.end(body);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
-let failures = 0;
-function check(name, ok, detail) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}${detail ? ` (${detail})` : ''}`);
-  if (!ok) failures++;
-}
-
+const { check, finish } = checks('gltf_model e2e');
 const version = JSON.parse(readFileSync(join(assets, 'package.json'), 'utf8')).version;
-const server = await serve();
-const origin = `http://127.0.0.1:${server.address().port}`;
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+// / is the page, /pkg/ the built package, /three/ three, /assets/ the model package.
+const server = await serveStatic({ pages: { '/': PAGE }, routes: { '/pkg/': pkg, '/three/': three, '/assets/': assets } });
+const browser = await launchChromium({ args: SWIFTSHADER_WEBGL });
 try {
   const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (error) => errors.push(error.message));
-  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
-  await page.goto(`${origin}/`);
+  const errors = collectErrors(page);
+  await page.goto(`${server.origin}/`);
   const result = await page.evaluate(async (model) => {
     const THREE = await import('three');
     const { GLTFLoader } = await import('three/addons/loaders/GLTFLoader.js');
@@ -258,7 +213,7 @@ try {
     return { renderer: renderer.getContext() instanceof WebGL2RenderingContext ? 'WebGL2' : 'WebGL1', meshes: out };
   }, MODEL);
 
-  console.log(`gltf e2e: @pmndrs/assets ${version} ${MODEL}, ${result.renderer}, ${result.meshes.length} mesh(es)`);
+  console.log(`gltf_model e2e: @pmndrs/assets ${version} ${MODEL}, ${result.renderer}, ${result.meshes.length} mesh(es)`);
   check('the model has meshes', result.meshes.length > 0);
   for (const m of result.meshes) {
     const where = `mesh '${m.name}'`;
@@ -308,8 +263,4 @@ try {
   await browser.close();
   server.close();
 }
-if (failures) {
-  console.error(`gltf e2e: ${failures} check(s) FAILED`);
-  process.exit(1);
-}
-console.log('gltf e2e: ok');
+finish();

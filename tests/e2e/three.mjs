@@ -17,68 +17,21 @@
 // geometry subdivideGeometry makes (groups, creases, quads, Loop, morphs), the input whole,
 // progress per level, abort, the sync call's error message.
 // Exits non-zero on failure.
-import { createServer } from 'node:http';
-import { existsSync, readFileSync, statSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { join } from 'node:path';
+import { SWIFTSHADER_WEBGL, checks, collectErrors, launchChromium, pkg, root, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
-const threeBuild = join(root, 'node_modules', 'three', 'build');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.wasm': 'application/wasm',
-  '.json': 'application/json',
-};
 const PAGE = `<!doctype html><meta charset="utf-8"><title>subsurf three test</title>
 <script type="importmap">{ "imports": { "three": "/three/three.module.js" } }</script>
 <body style="margin:0"></body>`;
 
-/** Answers GET path: / is the page, /pkg/... the built package, /three/... three's build. */
-function respond(path) {
-  if (path === '/') return { status: 200, type: TYPES['.html'], body: PAGE };
-  if (path === '/favicon.ico') return { status: 204, type: 'image/x-icon', body: '' };
-  for (const [prefix, dir] of [['/pkg/', pkg], ['/three/', threeBuild]]) {
-    if (!path.startsWith(prefix)) continue;
-    const file = normalize(join(dir, path.slice(prefix.length)));
-    if (!file.startsWith(dir + sep) || !existsSync(file) || statSync(file).isDirectory()) break;
-    return { status: 200, type: TYPES[extname(file)] ?? 'application/octet-stream', body: readFileSync(file) };
-  }
-  return { status: 404, type: 'text/plain', body: 'not found' };
-}
-
-function serve() {
-  const server = createServer((request, response) => {
-    const { status, type, body } = respond(decodeURIComponent(new URL(request.url, 'http://localhost').pathname));
-    response.writeHead(status, { 'content-type': type, 'cache-control': 'no-store' });
-    response.end(body);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
-let failures = 0;
-function check(name, ok, detail) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}${detail ? ` (${detail})` : ''}`);
-  if (!ok) failures++;
-}
-
-const server = await serve();
-const origin = `http://127.0.0.1:${server.address().port}`;
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const { check, finish } = checks('three e2e');
+// / is the page, /pkg/... the built package, /three/... three's build.
+const server = await serveStatic({ pages: { '/': PAGE }, routes: { '/pkg/': pkg, '/three/': join(root, 'node_modules', 'three', 'build') } });
+const browser = await launchChromium({ args: SWIFTSHADER_WEBGL });
 try {
   const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (error) => errors.push(error.message));
-  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
-  await page.goto(`${origin}/`);
+  const errors = collectErrors(page);
+  await page.goto(`${server.origin}/`);
   const result = await page.evaluate(async () => {
     const THREE = await import('three');
     const { default: init } = await import('/pkg/subsurf.js');
@@ -200,8 +153,4 @@ try {
   await browser.close();
   server.close();
 }
-if (failures) {
-  console.error(`three e2e: ${failures} check(s) FAILED`);
-  process.exit(1);
-}
-console.log('three e2e: ok');
+finish();

@@ -19,43 +19,12 @@
 // Prints the GPU time per evaluate for 1 M output points, random and the torus at level 6 (with
 // the wasm evaluator.evaluate's for comparison; never asserted). Exits non-zero on
 // failure.
-import { createServer } from 'node:http';
-import { existsSync, readFileSync, statSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { existsSync } from 'node:fs';
+import { join } from 'node:path';
+import { checks, launchChromium, pkg, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const TOLERANCE = 1e-5;
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.wasm': 'application/wasm',
-  '.json': 'application/json',
-};
 const PAGE = '<!doctype html><meta charset="utf-8"><title>subsurf webgpu test</title><body></body>';
-
-/** Answers GET path: / is an empty page, /pkg/... the built package. */
-function respond(path) {
-  if (path === '/') return { status: 200, type: TYPES['.html'], body: PAGE };
-  if (!path.startsWith('/pkg/')) return { status: 404, type: 'text/plain', body: 'not found' };
-  const file = normalize(join(pkg, path.slice(5)));
-  if (!file.startsWith(pkg + sep) || !existsSync(file) || statSync(file).isDirectory()) {
-    return { status: 404, type: 'text/plain', body: 'not found' };
-  }
-  return { status: 200, type: TYPES[extname(file)] ?? 'application/octet-stream', body: readFileSync(file) };
-}
-
-function serve() {
-  const server = createServer((request, response) => {
-    const { status, type, body } = respond(decodeURIComponent(new URL(request.url, 'http://localhost').pathname));
-    response.writeHead(status, { 'content-type': type, 'cache-control': 'no-store' });
-    response.end(body);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
 
 // ---- helpers installed in the page as window.T
 function pageHelpers() {
@@ -180,18 +149,10 @@ function pageHelpers() {
   window.T = { rng, randomTable, randomControl, cpuEvaluate, compare, message };
 }
 
-const checks = [];
 const figures = [];
-let failures = 0;
-
-function pass(name, detail = '') {
-  checks.push(name);
-  console.log(`  ok   ${name}${detail ? ` (${detail})` : ''}`);
-}
-function fail(name, detail) {
-  failures++;
-  console.error(`  FAIL ${name}: ${detail}`);
-}
+const { check, finish } = checks('e2e webgpu');
+const pass = (name, detail) => check(name, true, detail);
+const fail = (name, detail) => check(name, false, detail);
 /** Checks a { error, detail } from T.compare against the tolerance. */
 function within(name, result, tolerance = TOLERANCE) {
   if (result.error <= tolerance) pass(name, `max error ${result.error.toExponential(2)}`);
@@ -207,25 +168,20 @@ function says(name, text, ...fragments) {
 
 async function run() {
   if (!existsSync(join(pkg, 'webgpu.js'))) throw new Error(`${pkg}/webgpu.js is missing; run scripts/build-pkg.sh`);
-  const server = await serve();
-  const origin = `http://127.0.0.1:${server.address().port}`;
-  const browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    headless: true,
-    args: ['--no-sandbox', '--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan',
-      '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  // / is an empty page, /pkg/... the built package.
+  const server = await serveStatic({ pages: { '/': PAGE }, routes: { '/pkg/': pkg } });
+  const browser = await launchChromium({ args: ['--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan'] });
   const pageErrors = [];
   try {
     const context = await browser.newContext();
     // http://insecure.test/ is served by the same handler but is not a secure context.
     await context.route('http://insecure.test/**', (route) => {
-      const { status, type, body } = respond(new URL(route.request().url()).pathname);
+      const { status, type, body } = server.respond(new URL(route.request().url()).pathname);
       return route.fulfill({ status, contentType: type, body });
     });
     const page = await context.newPage();
     page.on('pageerror', (error) => pageErrors.push(error.message));
-    await page.goto(`${origin}/`);
+    await page.goto(`${server.origin}/`);
     await page.addScriptTag({ content: `(${pageHelpers})();` });
     const adapter = await page.evaluate(async () => {
       window.W = await import('/pkg/webgpu.js');
@@ -620,15 +576,9 @@ async function run() {
   for (const line of figures) console.log(`  ${line}`);
 }
 
-const started = Date.now();
 try {
   await run();
 } catch (error) {
   fail('run', error.stack ?? error);
 }
-if (failures) {
-  console.error(`e2e webgpu: FAILED (${failures} of ${checks.length + failures} checks)`);
-  process.exitCode = 1;
-} else {
-  console.log(`e2e webgpu: ok (${checks.length} checks, ${((Date.now() - started) / 1000).toFixed(1)} s)`);
-}
+finish();

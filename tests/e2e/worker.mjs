@@ -22,22 +22,10 @@
 // Then prints the figures: the 1M-quad torus at level 1 on the main thread and through the
 // worker (copied and transferred input), and the thread's own time, whose difference is the
 // cost of getting the input there and the result back. Exits non-zero on failure.
-import { createServer } from 'node:http';
-import { existsSync, readFileSync, statSync } from 'node:fs';
-import { dirname, extname, join, normalize, sep } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { join } from 'node:path';
+import { checks, collectErrors, launchChromium, pkg, root, serveStatic } from './harness.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkg = process.env.PKG_DIR ?? join(root, 'pkg');
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const torusTiming = !process.argv.includes('--no-torus');
-const TYPES = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.mjs': 'text/javascript; charset=utf-8',
-  '.wasm': 'application/wasm',
-};
 const PAGE = '<!doctype html><meta charset="utf-8"><title>subsurf/worker test</title><body></body>';
 // A worker script of a user's: subsurf's functions, plus `keep` (subdivide, keeping the result's
 // arrays to look at after they went back) and `kept` (their byteLengths now), and `timed`
@@ -64,50 +52,17 @@ expose({
 });
 `;
 
-function respond(path) {
-  if (path === '/') return { status: 200, type: TYPES['.html'], body: PAGE };
-  if (path === '/test-worker.js') return { status: 200, type: TYPES['.js'], body: TEST_WORKER };
-  if (path === '/favicon.ico') return { status: 204, type: 'image/x-icon', body: '' };
-  for (const [prefix, dir] of [['/pkg/', pkg], ['/bench/', join(root, 'bench')]]) {
-    if (!path.startsWith(prefix)) continue;
-    const file = normalize(join(dir, path.slice(prefix.length)));
-    if (!file.startsWith(dir + sep) || !existsSync(file) || statSync(file).isDirectory()) break;
-    return { status: 200, type: TYPES[extname(file)] ?? 'application/octet-stream', body: readFileSync(file) };
-  }
-  return { status: 404, type: 'text/plain', body: 'not found' };
-}
-
-function serve() {
-  const server = createServer((request, response) => {
-    const { status, type, body } = respond(decodeURIComponent(new URL(request.url, 'http://localhost').pathname));
-    response.writeHead(status, { 'content-type': type, 'cache-control': 'no-store' });
-    response.end(body);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
-let failures = 0;
-function check(name, ok, detail) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}${detail ? ` (${detail})` : ''}`);
-  if (!ok) failures++;
-}
-
-const server = await serve();
-const origin = `http://127.0.0.1:${server.address().port}`;
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ['--no-sandbox', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+const { check, finish } = checks('worker e2e');
+const server = await serveStatic({
+  pages: { '/': PAGE, '/test-worker.js': TEST_WORKER },
+  routes: { '/pkg/': pkg, '/bench/': join(root, 'bench') },
 });
+const browser = await launchChromium();
 try {
   const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (error) => errors.push(error.message));
   // The missing script and .wasm are requested on purpose; their 404s are no page errors.
-  page.on('console', (message) => {
-    if (message.type() === 'error' && !/404 \(Not Found\)/.test(message.text())) errors.push(message.text());
-  });
-  await page.goto(`${origin}/`);
+  const errors = collectErrors(page, { except: /404 \(Not Found\)/ });
+  await page.goto(`${server.origin}/`);
   const results = await page.evaluate(async (torusTiming) => {
     const subsurf = await import('/pkg/subsurf.js');
     await subsurf.default();
@@ -323,8 +278,4 @@ try {
   await browser.close();
   server.close();
 }
-if (failures) {
-  console.error(`worker e2e: ${failures} check(s) FAILED`);
-  process.exit(1);
-}
-console.log('worker e2e: ok');
+finish();

@@ -38,47 +38,27 @@
 // the sums differs), about 1e-7. Exits non-zero on the first failure.
 
 import assert from 'node:assert/strict';
-import { cpSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { readFileSync, readdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { checks, installPackage, root, triangulated } from './common.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkgDir = join(root, 'pkg');
 const fixtures = join(root, 'tests', 'fixtures', 'gltf');
 const TOLERANCE = 1e-5;
 const LEVELS = 2;
 const MODES = ['none', undefined, 'boundaries', 'all']; // undefined: the default, 'corners-plus1'
-let checks = 0, corners = 0;
+let corners = 0;
 const tally = {}; // per reference: { comparisons, worst, where }
 let against = '';
-const started = performance.now();
-
-async function check(name, fn) {
-  try {
-    await fn();
-    checks++;
-  } catch (error) {
-    console.error(`gltf: FAILED ${name}\n${error.stack ?? error}`);
-    process.exit(1);
-  }
-}
+const { check, finish } = checks('gltf');
 
 // ---- install the package beside three, as a user's project has them (as tests/js/three.mjs)
-const pkg = JSON.parse(readFileSync(join(pkgDir, 'package.json'), 'utf8'));
-const scratch = mkdtempSync(join(tmpdir(), 'subsurf-gltf-'));
-process.on('exit', () => rmSync(scratch, { recursive: true, force: true }));
-const installed = join(scratch, 'node_modules', 'subsurf');
-mkdirSync(installed, { recursive: true });
-for (const file of [...pkg.files, 'package.json']) cpSync(join(pkgDir, file), join(installed, file));
-symlinkSync(join(root, 'node_modules', 'three'), join(scratch, 'node_modules', 'three'), 'dir');
-writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
-writeFileSync(
-  join(scratch, 'consumer.mjs'),
-  "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
+const { consumer } = await installPackage({
+  prefix: 'subsurf-gltf-',
+  links: { three: join(root, 'node_modules', 'three') },
+  consumer: "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
     "export { subdivideGeometry } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n",
-);
-const { GLTFLoader, subdivideGeometry, subsurf } = await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+});
+const { GLTFLoader, subdivideGeometry, subsurf } = consumer;
 const { readObj, subdivide } = subsurf;
 
 // ---- reading
@@ -167,29 +147,6 @@ function uvsByValue(mesh) {
     merged.add(`${v}/${indices[c]}`);
   });
   return [{ ...mesh, attributes: { uv: { ...uv, indices } } }, merged.size < pairs.size];
-}
-
-/** The OBJ mesh triangulated as the fixture records (quads by `diagonals`, others fanned). */
-function triangulated(mesh, diagonals) {
-  const uv = mesh.attributes.uv;
-  const indices = [], uvIndices = [];
-  let c = 0;
-  mesh.faceSizes.forEach((n, f) => {
-    const r = n === 4 ? Number(diagonals[f]) : 0;
-    for (let i = 1; i + 1 < n; i++) {
-      for (const k of [r, (r + i) % n, (r + i + 1) % n]) {
-        indices.push(mesh.indices[c + k]);
-        uvIndices.push(uv.indices[c + k]);
-      }
-    }
-    c += n;
-  });
-  return {
-    positions: mesh.positions,
-    indices: Uint32Array.from(indices),
-    faceSizes: new Uint32Array(indices.length / 3).fill(3),
-    attributes: { uv: { array: uv.array, itemSize: 2, indices: Uint32Array.from(uvIndices) } },
-  };
 }
 
 // ---- comparing
@@ -399,7 +356,7 @@ for (const file of files) {
   const by = equalValueSeams ? 'subdivide on the OBJ (equal vt values joined)' : 'OpenSubdiv';
   const sizes = new Set(obj.faceSizes);
   const allTriangles = sizes.size === 1 && sizes.has(3), allQuads = sizes.size === 1 && sizes.has(4);
-  const tri = triangulated(obj, extras.diagonals);
+  const tri = triangulated(obj, (f) => Number(extras.diagonals[f]));
 
   await check(`${name}: the glTF is the OBJ as the recorded triangulation splits it`, () => {
     assert.deepEqual(Array.from(obj.faceSizes), extras.faceSizes);
@@ -478,10 +435,9 @@ await check('bad input: a glTF geometry without position; quads: true with Loop'
   assert.equal(subdivideGeometry(geometry, { levels: 1, quads: true }).index.count, 6 * 4 * 6);
 });
 
-const seconds = ((performance.now() - started) / 1000).toFixed(1);
 console.log(`gltf: ${files.length} fixtures (${closedShapes.length} closed), ${corners} output vertices compared, tolerance ${TOLERANCE}`);
 for (const [name, t] of Object.entries(tally)) {
   console.log(`gltf:   against ${name}: ${t.comparisons} comparisons, worst difference ${t.worst.toExponential(2)} (${t.where})`);
 }
 if (knownFailures.size) console.log(`gltf: KNOWN FAILURE (js/three.js quads: true does not rebuild every quad) on ${[...knownFailures].join(', ')}; --strict fails on it`);
-console.log(`gltf: ok (${checks} checks; ${seconds} s)`);
+finish();

@@ -15,48 +15,24 @@
 
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { cpSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { checks, installPackage, root, triangulated } from './common.mjs';
 
-const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const pkgDir = join(root, 'pkg');
-let checks = 0;
-const started = performance.now();
-
-async function check(name, fn) {
-  try {
-    const detail = await fn();
-    if (detail) console.log(`three: ${name}: ${detail}`);
-    checks++;
-  } catch (error) {
-    console.error(`three: FAILED ${name}\n${error.stack ?? error}`);
-    process.exit(1);
-  }
-}
+const { check, finish } = checks('three');
 
 // ---- install the package beside three, as a user's project has them
-const pkg = JSON.parse(readFileSync(join(pkgDir, 'package.json'), 'utf8'));
-const scratch = mkdtempSync(join(tmpdir(), 'subsurf-three-'));
-process.on('exit', () => rmSync(scratch, { recursive: true, force: true }));
-const installed = join(scratch, 'node_modules', 'subsurf');
-mkdirSync(installed, { recursive: true });
-for (const file of [...pkg.files, 'package.json']) cpSync(join(pkgDir, file), join(installed, file));
 const threeArg = process.argv.indexOf('--three');
 const threeDir = threeArg > 0 ? join(root, process.argv[threeArg + 1]) : join(root, 'node_modules', 'three');
-symlinkSync(threeDir, join(scratch, 'node_modules', 'three'), 'dir');
-mkdirSync(join(scratch, 'node_modules', '@types'));
-symlinkSync(join(root, 'node_modules', '@types', 'three'), join(scratch, 'node_modules', '@types', 'three'), 'dir');
-writeFileSync(join(scratch, 'package.json'), JSON.stringify({ type: 'module' }));
-writeFileSync(
-  join(scratch, 'consumer.mjs'),
-  "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
+const { scratch, installed, manifest: pkg, consumer } = await installPackage({
+  prefix: 'subsurf-three-',
+  links: { three: threeDir, '@types/three': join(root, 'node_modules', '@types', 'three') },
+  consumer: "export * as THREE from 'three';\nexport { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';\n" +
     "export { subdivideGeometry, subdivideGeometryAsync } from 'subsurf/three';\nexport * as subsurf from 'subsurf/node';\n" +
     "export { createWorker } from 'subsurf/worker';\n",
-);
-const { THREE, GLTFLoader, subdivideGeometry, subdivideGeometryAsync, createWorker, subsurf } =
-  await import(pathToFileURL(join(scratch, 'consumer.mjs')).href);
+});
+const { THREE, GLTFLoader, subdivideGeometry, subdivideGeometryAsync, createWorker, subsurf } = consumer;
 const { shape, subdivide, toDrawable } = subsurf;
 const threeVersion = JSON.parse(readFileSync(join(threeDir, 'package.json'), 'utf8')).version;
 
@@ -102,29 +78,6 @@ function gltfGeometry(mesh, { diagonal = () => 0 } = {}) {
   g.setAttribute('uv', new THREE.Float32BufferAttribute(uvs, 2));
   g.setIndex(index);
   return g;
-}
-
-/** The same triangulation as gltfGeometry, as an indexed subsurf mesh with the uv channel. */
-function triangulated(mesh, { diagonal = () => 0 } = {}) {
-  const uv = mesh.attributes.uv;
-  const indices = [], uvIndices = [];
-  let c = 0;
-  for (let f = 0; f < mesh.faceSizes.length; f++) {
-    const n = mesh.faceSizes[f];
-    const r = n === 4 ? diagonal(f) : 0;
-    for (let i = 1; i + 1 < n; i++) {
-      for (const k of [r, (r + i) % n, (r + i + 1) % n]) {
-        indices.push(mesh.indices[c + k]);
-        uvIndices.push(uv.indices[c + k]);
-      }
-    }
-    c += n;
-  }
-  return {
-    positions: mesh.positions,
-    indices: Uint32Array.from(indices),
-    attributes: { uv: { array: uv.array, itemSize: 2, indices: Uint32Array.from(uvIndices) } },
-  };
 }
 
 /** subdivide's result made drawable: per drawn vertex, position, uv and (with normals) normal. */
@@ -912,4 +865,4 @@ if (threeArg < 0) await check('tsc on tests/js/three_types_check.ts with @types/
   assert.equal(tsc.status, 0, `tsc failed:\n${tsc.stdout}${tsc.stderr}`);
 });
 
-console.log(`three: ok (${checks} checks; three ${threeVersion}; ${((performance.now() - started) / 1000).toFixed(1)} s)`);
+finish(`three ${threeVersion}`);
