@@ -146,23 +146,12 @@ pub fn face_normals(poly: &PolyMesh) -> Vec<f32> {
 /// [`face_normals`] of the faces `indices`, `face_sizes` over `positions`, into `out` (as long
 /// as `positions`; the faces' indices must be in range).
 pub fn face_normals_into(positions: &[f32], indices: &[u32], face_sizes: &[u32], out: &mut [f32]) {
-    let point = |v: u32| {
-        let i = 3 * v as usize;
-        DVec3::new(
-            f64::from(positions[i]),
-            f64::from(positions[i + 1]),
-            f64::from(positions[i + 2]),
-        )
-    };
     let mut sums = vec![DVec3::ZERO; positions.len() / 3];
     let mut start = 0;
     for &n in face_sizes {
         let face = &indices[start..start + n as usize];
         start += n as usize;
-        let mut area = DVec3::ZERO;
-        for (i, &a) in face.iter().enumerate() {
-            area += point(a).cross(point(face[(i + 1) % face.len()]));
-        }
+        let area = crate::mesh::area_vector(positions, face);
         for &v in face {
             sums[v as usize] += area;
         }

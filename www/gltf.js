@@ -27,6 +27,7 @@ import * as SkeletonUtils from 'three/addons/utils/SkeletonUtils.js';
 import { subdivideGeometryAsync } from 'subsurf/three';
 import { createWorker } from 'subsurf/worker';
 import { schemeNames, version } from 'subsurf';
+import { attachDropZone } from './drop.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -634,27 +635,7 @@ function attachControls() {
   });
   $('default-model').addEventListener('click', () => showModel(builtInModel(), 'Built-in: torus knot and box'));
 
-  const dropZone = $('drop-zone');
-  const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes('Files');
-  let depth = 0;
-  window.addEventListener('dragenter', (event) => {
-    if (!hasFiles(event)) return;
-    event.preventDefault();
-    depth++;
-    dropZone.hidden = false;
-  });
-  window.addEventListener('dragover', (event) => hasFiles(event) && event.preventDefault());
-  window.addEventListener('dragleave', (event) => {
-    if (!hasFiles(event)) return;
-    depth = Math.max(0, depth - 1);
-    if (depth === 0) dropZone.hidden = true;
-  });
-  window.addEventListener('drop', (event) => {
-    event.preventDefault();
-    depth = 0;
-    dropZone.hidden = true;
-    openFiles(event.dataTransfer?.files);
-  });
+  attachDropZone($('drop-zone'), openFiles);
 }
 
 function main() {

@@ -54,6 +54,7 @@ import { OrbitCamera, attachCameraControls, boundsOf } from './camera.js';
 import { Renderer } from './renderer.js';
 import { edgeKey, pickEdge, projectVertices } from './picking.js';
 import { Animator, probeWebGpu } from './animation.js';
+import { attachDropZone } from './drop.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -877,28 +878,7 @@ function attachControls() {
   attachCameraControls(canvas, camera, { changed: () => requestDraw(), frame: frameMesh });
   new ResizeObserver(() => requestDraw()).observe(canvas);
 
-  // Drag and drop anywhere on the page.
-  const dropZone = $('drop-zone');
-  const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes('Files');
-  let depth = 0;
-  window.addEventListener('dragenter', (event) => {
-    if (!hasFiles(event)) return;
-    event.preventDefault();
-    depth++;
-    dropZone.hidden = false;
-  });
-  window.addEventListener('dragover', (event) => hasFiles(event) && event.preventDefault());
-  window.addEventListener('dragleave', (event) => {
-    if (!hasFiles(event)) return;
-    depth = Math.max(0, depth - 1);
-    if (depth === 0) dropZone.hidden = true;
-  });
-  window.addEventListener('drop', (event) => {
-    event.preventDefault();
-    depth = 0;
-    dropZone.hidden = true;
-    openFile(event.dataTransfer?.files?.[0]);
-  });
+  attachDropZone($('drop-zone'), (files) => openFile(files?.[0]));
 }
 
 async function main() {

@@ -25,7 +25,7 @@ mod handles;
 mod poly;
 
 pub use handles::{CellRef, HalfEdgeRef, VertexRef};
-pub use poly::PolyMesh;
+pub use poly::{area_vector, PolyMesh};
 pub(crate) use poly::{chunked, quad_and_fan_chunks};
 
 use crate::error::Result;

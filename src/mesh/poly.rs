@@ -60,6 +60,20 @@ pub(crate) fn quad_fan(q: [u32; 4]) -> [u32; 6] {
     [q[0], q[1], q[2], q[0], q[2], q[3]]
 }
 
+/// The area vector of polygon `face` over `positions` (x, y, z per vertex), in f64: Newell's
+/// normal, twice the area along the normal; exact for planar faces, the best plane's for others.
+pub fn area_vector(positions: &[f32], face: &[u32]) -> glam::DVec3 {
+    let point = |v: u32| {
+        let i = 3 * v as usize;
+        glam::DVec3::new(positions[i].into(), positions[i + 1].into(), positions[i + 2].into())
+    };
+    let mut area = glam::DVec3::ZERO;
+    for (i, &a) in face.iter().enumerate() {
+        area += point(a).cross(point(face[(i + 1) % face.len()]));
+    }
+    area
+}
+
 /// A polygon mesh as three flat arrays, the form WebGL and OBJ files use.
 ///
 /// `positions` holds x, y, z per vertex; face `f` uses the next `face_sizes[f]` entries of

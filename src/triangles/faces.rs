@@ -91,11 +91,8 @@ pub fn triangle_faces(
 
     let edges = TriangleEdges::new(corners)?;
     let mut marks = vec![SMOOTH; edges.len()];
-    let normals = (options.crease_angle.is_some() || options.quads.is_some())
-        .then(|| triangle_normals(positions, corners));
-    let normals = normals.transpose()?;
-    if let (Some(angle), Some(normals)) = (options.crease_angle, &normals) {
-        crease_angle_edges(&edges, normals, angle, &mut marks)?;
+    if let Some(angle) = options.crease_angle {
+        crease_angle_edges(&edges, &triangle_normals(positions, corners)?, angle, &mut marks)?;
     }
     if let Some(split) = options.split_normals {
         normal_split_edges(&edges, input_corners, split, &mut marks)?;

@@ -199,14 +199,14 @@ pub fn join_quads(
     // Exporters (glTF, three.js geometries) write a quad's two triangles one after the other;
     // geometry alone cannot tell which of two near-equal pairs was the quad (the thin quads
     // of a fan around a pole, folded quads), their order can. So consecutive triangles are
-    // joined first, in order, where the rule allows them.
-    // A consecutive pair the rule refuses (a folded quad) stays two triangles: joining either
-    // with a neighbour would make a quad the model never had.
+    // joined first, in order, where the rule allows them; a consecutive pair the rule refuses
+    // (a folded quad) stays two triangles: joining either with a neighbour would make a quad
+    // the model never had.
     let mut t = 0;
     while t + 1 < triangles {
         let next_to = |e: u32| {
-            let (h, g) = (edges.h0[e as usize] as usize / 3, edges.h1[e as usize] as usize / 3);
-            h.min(g) == t && h.max(g) == t + 1
+            let (t1, t2) = ends(edges, e as usize);
+            t1.min(t2) == t && t1.max(t2) == t + 1
         };
         if !(0..3).any(|j| next_to(edges.edge_of[3 * t + j])) {
             t += 1;
@@ -219,7 +219,7 @@ pub fn join_quads(
         t += 2;
     }
     for &i in &order {
-        let (t1, t2) = matching.ends(edges, candidates[i]);
+        let (t1, t2) = ends(edges, candidates[i]);
         if matching.is_free(t1) && matching.is_free(t2) {
             matching.pair(edges, candidates[i]);
         }
@@ -256,6 +256,11 @@ pub fn join_quads(
 
 const FREE: u32 = u32::MAX;
 
+/// The triangles of edge `e`'s first two half-edges (a candidate's two triangles).
+fn ends(edges: &TriangleEdges, e: usize) -> (usize, usize) {
+    (edges.h0[e] as usize / 3, edges.h1[e] as usize / 3)
+}
+
 /// Which triangles are joined: per triangle its partner (or [`FREE`]) and its half-edge on the
 /// shared edge.
 struct Matching {
@@ -273,10 +278,9 @@ struct Candidates {
 
 impl Candidates {
     fn new(edges: &TriangleEdges, candidates: &[usize], order: &[usize], triangles: usize) -> Self {
-        let ends = |e: usize| [edges.h0[e] as usize / 3, edges.h1[e] as usize / 3];
         let mut start = vec![0u32; triangles + 1];
         for &e in candidates {
-            for t in ends(e) {
+            for t in <[usize; 2]>::from(ends(edges, e)) {
                 start[t + 1] += 1;
             }
         }
@@ -287,7 +291,7 @@ impl Candidates {
         let mut around = vec![0u32; start[triangles] as usize];
         for &i in order {
             let e = candidates[i];
-            for t in ends(e) {
+            for t in <[usize; 2]>::from(ends(edges, e)) {
                 around[fill[t] as usize] = e as u32;
                 fill[t] += 1;
             }
@@ -307,15 +311,10 @@ impl Matching {
         self.partner[t] == FREE && !self.apart[t]
     }
 
-    /// The two triangles of candidate edge `e`.
-    fn ends(&self, edges: &TriangleEdges, e: usize) -> (usize, usize) {
-        (edges.h0[e] as usize / 3, edges.h1[e] as usize / 3)
-    }
-
     /// Joins the two triangles of candidate edge `e` (whatever they were joined to before).
     fn pair(&mut self, edges: &TriangleEdges, e: usize) {
         let (h, g) = (edges.h0[e], edges.h1[e]);
-        let (t1, t2) = (h as usize / 3, g as usize / 3);
+        let (t1, t2) = ends(edges, e);
         (self.partner[t1], self.partner[t2]) = (t2 as u32, t1 as u32);
         (self.join_edge[t1], self.join_edge[t2]) = (h, g);
     }
@@ -351,7 +350,7 @@ impl Matching {
                 let outer = queue[next];
                 next += 1;
                 for &e in &around[start[outer] as usize..start[outer + 1] as usize] {
-                    let (t1, t2) = self.ends(edges, e as usize);
+                    let (t1, t2) = ends(edges, e as usize);
                     let inner = if t1 == outer { t2 } else { t1 };
                     if seen[inner] == stamp || self.apart[inner] {
                         continue;

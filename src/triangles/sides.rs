@@ -117,21 +117,11 @@ pub fn side_normals(
         drawn_side[d as usize] = s;
     }
 
-    let point = |v: u32| super::edges::point(&mesh.positions, v);
     let mut sums = vec![DVec3::ZERO; side_count];
     let mut start = 0;
     for &n in &mesh.face_sizes {
         let face = &mesh.indices[start..start + n as usize];
-        // Newell's area vector: exact for planar faces, the best plane's for others.
-        let mut area = DVec3::ZERO;
-        for (i, &a) in face.iter().enumerate() {
-            let (p, q) = (point(a), point(face[(i + 1) % face.len()]));
-            area += DVec3::new(
-                (p.y - q.y) * (p.z + q.z),
-                (p.z - q.z) * (p.x + q.x),
-                (p.x - q.x) * (p.y + q.y),
-            );
-        }
+        let area = crate::mesh::area_vector(&mesh.positions, face);
         for (k, &v) in face.iter().enumerate() {
             if several[v as usize] {
                 sums[corner_sides[start + k] as usize] += area;
