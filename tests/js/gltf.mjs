@@ -330,15 +330,6 @@ function largestFold(mesh) {
 
 // ---- the fixtures
 
-/**
- * Known failures of `quads: true`, checked to still fail (run with --strict to see them fail).
- * None now: `catmark_lefthanded` was one until join_quads joined consecutive triangles first and
- * mended stranded ones along augmenting paths (DEVELOPERS.md, subsurf/three).
- */
-const KNOWN_QUAD_FAILURES = {};
-const strict = process.argv.includes('--strict');
-const knownFailures = new Set();
-
 const files = readdirSync(fixtures).filter((f) => f.endsWith('.glb')).sort();
 assert.ok(files.length >= 10, 'the fixtures are there');
 const closedShapes = [];
@@ -401,19 +392,12 @@ for (const file of files) {
     variants.push({ label: `Catmull-Clark on the triangles, fvarLinear ${mode}, = subdivide on the triangulated OBJ`, options: { fvarLinear: mode }, ref: () => meshFaces(subdivide(tri, { levels: LEVELS, fvarLinear: mode })) });
   }
   for (const { label, options, ref } of variants) {
-    const known = options.quads && KNOWN_QUAD_FAILURES[name];
     await check(`${name}: ${label}, level ${LEVELS}; watertight where the input is`, () => {
       for (const k of Object.keys(options)) if (options[k] === undefined) delete options[k];
       const out = subdivideGeometry(geometry, { ...options, levels: LEVELS, normals: false });
       const reference = ref();
       against = label.includes('= OpenSubdiv') ? 'OpenSubdiv' : 'subdivide';
-      if (known && !strict) {
-        assert.throws(() => assertSameFaces(out, reference, `${name}, ${label}`), /is no reference corner|is not in the output/,
-          `${name}: ${label} now passes; remove it from KNOWN_QUAD_FAILURES`);
-        knownFailures.add(name);
-      } else {
-        assertSameFaces(out, reference, `${name}, ${label}`);
-      }
+      assertSameFaces(out, reference, `${name}, ${label}`);
       if (assertWatertight(geometry, out, LEVELS, `${name}, ${label}`) && !closedShapes.includes(name)) closedShapes.push(name);
     });
   }
@@ -439,5 +423,4 @@ console.log(`gltf: ${files.length} fixtures (${closedShapes.length} closed), ${c
 for (const [name, t] of Object.entries(tally)) {
   console.log(`gltf:   against ${name}: ${t.comparisons} comparisons, worst difference ${t.worst.toExponential(2)} (${t.where})`);
 }
-if (knownFailures.size) console.log(`gltf: KNOWN FAILURE (js/three.js quads: true does not rebuild every quad) on ${[...knownFailures].join(', ')}; --strict fails on it`);
 finish();
