@@ -4,6 +4,7 @@
 use crate::mesh::HalfEdgeMesh;
 use crate::rules::{Stencil, Weights};
 use glam::Vec3;
+use std::borrow::Cow;
 
 /// Sums weighted positions (or any three floats per vertex): the parent level's `points` by
 /// vertex, corners through `he_from`, and the child level's `face_points` by cell.
@@ -263,6 +264,199 @@ impl<const N: usize> Weights for FVarSum<'_, N> {
     }
 }
 
+/// Any number of vertex-numbered channels (`width` floats per vertex each) refined together:
+/// each new point's rule is walked once and its weights applied to every channel (the
+/// vertex-varying rows, and the face-varying values that follow the surface, see
+/// [`crate::fvar::FVarChannel::vertex_values`]). A parent borrows its data; a child owns it.
+#[derive(Clone, Debug, Default)]
+pub struct Joint<'p> {
+    pub channels: Vec<Channel<'p>>,
+}
+
+/// One vertex-numbered channel of a [`Joint`].
+#[derive(Clone, Debug, Default)]
+pub struct Channel<'p> {
+    pub width: usize,
+    pub values: Cow<'p, [f32]>,
+}
+
+/// The sum of a [`Joint`]: the rule's sources and weights are recorded, then summed channel by
+/// channel, each in a loop of its own width whose sum stays in registers. (Summing every
+/// channel as the weights come, into a buffer of widths known only at run time, kept the sums
+/// in memory and cost more than walking the rule once per channel.)
+pub struct JointSum<'a> {
+    he_from: &'a [u32],
+    /// Each channel's width, parent values and the child level's face points.
+    channels: Vec<(usize, &'a [f32], &'a [f32])>,
+    /// The sources (a face point with [`FACE_POINT`] set) and weights, the scales of the open
+    /// groups applied.
+    entries: Vec<(u32, f32)>,
+    /// The product of the scales of the open groups.
+    scale: f32,
+}
+
+/// Marks a [`JointSum`] entry that reads a face point.
+const FACE_POINT: u32 = 1 << 31;
+
+impl Weights for JointSum<'_> {
+    #[inline(always)]
+    fn vertex(&mut self, v: u32, weight: f32) {
+        self.entries.push((v, weight * self.scale));
+    }
+
+    #[inline(always)]
+    fn corner(&mut self, h: u32, weight: f32) {
+        self.vertex(self.he_from[h as usize], weight);
+    }
+
+    #[inline(always)]
+    fn face_point(&mut self, c: u32, weight: f32) {
+        self.entries.push((c | FACE_POINT, weight * self.scale));
+    }
+
+    /// The scale outside the group.
+    type Group = f32;
+
+    #[inline(always)]
+    fn begin_group(&mut self, scale: f32) -> f32 {
+        let outer = self.scale;
+        self.scale = outer * scale;
+        outer
+    }
+
+    #[inline(always)]
+    fn end_group(&mut self, outer: f32) {
+        self.scale = outer;
+    }
+}
+
+/// The sum of `entries` over rows of `W` floats (`rows` by vertex, `face_rows` by face point),
+/// in the order the rule gave them (as [`RowSum`] sums).
+#[inline(always)]
+fn sum_entries<const W: usize>(
+    entries: &[(u32, f32)],
+    rows: &[f32],
+    face_rows: &[f32],
+) -> [f32; W] {
+    let mut sum = [0.0f32; W];
+    let sources = [rows, face_rows];
+    for &(i, weight) in entries {
+        // A select, not a branch: vertices and face points alternate in no set pattern.
+        let source = sources[(i >> 31) as usize];
+        let start = (i & !FACE_POINT) as usize * W;
+        if let Some(row) = source.get(start..start + W) {
+            for k in 0..W {
+                sum[k] += row[k] * weight;
+            }
+        }
+    }
+    sum
+}
+
+/// The row that `entries` sum over `channel` (width, parent rows, face rows), into `out`.
+fn sum_entries_into(
+    entries: &[(u32, f32)],
+    (width, rows, face_rows): (usize, &[f32], &[f32]),
+    out: &mut [f32],
+) {
+    match out {
+        [x] => [*x] = sum_entries::<1>(entries, rows, face_rows),
+        [x, y] => [*x, *y] = sum_entries::<2>(entries, rows, face_rows),
+        [x, y, z] => [*x, *y, *z] = sum_entries::<3>(entries, rows, face_rows),
+        [x, y, z, w] => [*x, *y, *z, *w] = sum_entries::<4>(entries, rows, face_rows),
+        _ => {
+            out.fill(0.0);
+            let sources = [rows, face_rows];
+            for &(i, weight) in entries {
+                let source = sources[(i >> 31) as usize];
+                let start = (i & !FACE_POINT) as usize * width;
+                if let Some(row) = source.get(start..start + width) {
+                    RowSum::add(out, row, weight);
+                }
+            }
+        }
+    }
+}
+
+impl Joint<'_> {
+    /// Appends the rows that `sum`'s entries give.
+    #[inline(always)]
+    fn push_sum(&mut self, sum: &JointSum<'_>) {
+        for (channel, &source) in self.channels.iter_mut().zip(&sum.channels) {
+            let values = channel.values.to_mut();
+            let (entries, (width, rows, faces)) = (&sum.entries[..], source);
+            match width {
+                1 => values.extend_from_slice(&sum_entries::<1>(entries, rows, faces)),
+                2 => values.extend_from_slice(&sum_entries::<2>(entries, rows, faces)),
+                3 => values.extend_from_slice(&sum_entries::<3>(entries, rows, faces)),
+                4 => values.extend_from_slice(&sum_entries::<4>(entries, rows, faces)),
+                _ => {
+                    let start = values.len();
+                    values.resize(start + width, 0.0);
+                    sum_entries_into(entries, source, &mut values[start..]);
+                }
+            }
+        }
+    }
+}
+
+impl Primvar for Joint<'_> {
+    type Sum<'a>
+        = JointSum<'a>
+    where
+        Self: 'a;
+
+    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> JointSum<'a> {
+        let channels = self.channels.iter().enumerate().map(|(i, c)| {
+            let faces = face_points.and_then(|f| f.channels.get(i)).map_or(&[][..], |f| &f.values);
+            (c.width, &c.values[..], faces)
+        });
+        JointSum { he_from, channels: channels.collect(), entries: Vec::new(), scale: 1.0 }
+    }
+
+    fn with_capacity(&self, capacity: usize) -> Self {
+        let channels = self.channels.iter().map(|c| Channel {
+            width: c.width,
+            values: Cow::Owned(Vec::with_capacity(capacity * c.width)),
+        });
+        Joint { channels: channels.collect() }
+    }
+
+    #[inline(always)]
+    fn push<'a>(&mut self, sum: &mut JointSum<'a>, rule: impl FnOnce(&mut JointSum<'a>)) {
+        sum.entries.clear();
+        rule(sum);
+        self.push_sum(sum);
+    }
+
+    fn extend_from(&mut self, other: &Self) {
+        for (channel, more) in self.channels.iter_mut().zip(&other.channels) {
+            channel.values.to_mut().extend_from_slice(&more.values);
+        }
+    }
+
+    fn extend_zeroed(&mut self, count: usize) {
+        for channel in &mut self.channels {
+            let values = channel.values.to_mut();
+            values.resize(values.len() + count * channel.width, 0.0);
+        }
+    }
+
+    fn set<'a>(&mut self, i: usize, sum: &mut JointSum<'a>, rule: impl FnOnce(&mut JointSum<'a>)) {
+        sum.entries.clear();
+        rule(sum);
+        for (channel, &source) in self.channels.iter_mut().zip(&sum.channels) {
+            let width = channel.width;
+            let target = &mut channel.values.to_mut()[i * width..(i + 1) * width];
+            sum_entries_into(&sum.entries, source, target);
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.channels.iter().all(|c| c.values.is_empty())
+    }
+}
+
 /// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.
 /// Width 0 (no channel) costs nothing at any level.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -320,6 +514,15 @@ pub trait Primvar: Sized {
     /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
     /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;
+    /// These values as one vertex-numbered channel, when they are plain floats (so that a host
+    /// may refine them in the walk of the rules that refines the positions, see [`Joint`]).
+    fn as_channel(&self) -> Option<Channel<'_>> {
+        None
+    }
+    /// Values of this kind from the refined channel that [`Primvar::as_channel`] gave.
+    fn with_channel(&self, _values: Vec<f32>) -> Option<Self> {
+        None
+    }
     /// The values of three masks per vertex of `mesh` (the limit position and two tangents),
     /// which `masks(v, recorded)` records into three cleared [`Stencil`]s: the position rows,
     /// and the two tangent rows. A kind whose three sums share their work overrides this.
@@ -422,5 +625,14 @@ impl Primvar for Rows {
 
     fn is_empty(&self) -> bool {
         Rows::is_empty(self)
+    }
+
+    fn as_channel(&self) -> Option<Channel<'_>> {
+        let values = Cow::Borrowed(&self.values[..]);
+        (!self.is_empty()).then_some(Channel { width: self.width, values })
+    }
+
+    fn with_channel(&self, values: Vec<f32>) -> Option<Self> {
+        Some(Rows { width: self.width, values })
     }
 }

@@ -14,7 +14,7 @@ use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{
     check_guards, check_guards_with, predict, predict_counts, AttributeSizes, Prediction,
 };
-use crate::primvar::{Primvar, Rows};
+use crate::primvar::{Joint, Primvar, Rows};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
@@ -798,6 +798,15 @@ fn run_levels<'a, V: Primvar>(
     Ok(Refined::poly(mesh.to_poly(), finish(rows, fvar)))
 }
 
+/// The new values of `rows` by the split `S` with `rules` (none when there are none).
+fn refine_rows<S: PrimalSplit<R>, R, V: Primvar>(mesh: &HalfEdgeMesh, rules: &R, rows: &V) -> V {
+    if rows.is_empty() {
+        rows.with_capacity(0)
+    } else {
+        S::points(mesh, rules, rows)
+    }
+}
+
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
 /// positions with the parent mesh (the faces are implicit, see [`Refined`]), or a mesh built by
 /// index arithmetic where a host can do that.
@@ -829,15 +838,36 @@ impl<V: Primvar> Primal<'_, '_, V> {
         linear: bool,
     ) -> (Level<'a, V>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
-        for channel in self.fvar.iter_mut() {
-            let rules = PrimalRules::<S, R>::new(rules);
-            channel.refine(&mesh, split, &rules, linear, &self.sharp, self.mode);
+        let (sharp, mode) = (&self.sharp, self.mode);
+        let children: Vec<_> =
+            self.fvar.iter_mut().map(|c| c.begin(&mesh, split, sharp, mode)).collect();
+        // One walk of the rules for the vertex-varying rows and the face-varying values that
+        // follow the surface (see `Joint`); the positions keep a walk of their own, whose sum
+        // stays in registers.
+        let fvar_joint = FVarChannel::follows_surface(linear, mode) && !self.fvar.is_empty();
+        let rows_channel = self.rows.as_channel();
+        let (rows, mut fvar_values) = if rows_channel.is_some() || fvar_joint {
+            let has_rows = rows_channel.is_some();
+            let mut channels: Vec<_> = rows_channel.into_iter().collect();
+            if fvar_joint {
+                channels.extend(self.fvar.iter().map(|c| c.vertex_values(&mesh)));
+            }
+            let child = S::points(&mesh, rules, &Joint { channels });
+            let mut channels = child.channels.into_iter().map(|c| c.values.into_owned());
+            let rows = has_rows.then(|| channels.next()).flatten();
+            let rows = rows.and_then(|values| self.rows.with_channel(values));
+            let rows = rows.unwrap_or_else(|| refine_rows::<S, R, V>(&mesh, rules, self.rows));
+            (rows, channels.map(Some).collect())
+        } else {
+            (refine_rows::<S, R, V>(&mesh, rules, self.rows), Vec::new())
+        };
+        fvar_values.resize_with(children.len(), || None);
+        let value_rules = PrimalRules::<S, R>::new(rules);
+        for ((channel, child), joint) in self.fvar.iter_mut().zip(children).zip(fvar_values) {
+            channel.finish(&mesh, split, &value_rules, child, linear, sharp, mode, joint);
         }
-        let tags = self.sharp.tags;
-        let rows = self.rows;
-        let rows =
-            if rows.is_empty() { rows.with_capacity(0) } else { S::points(&mesh, rules, rows) };
         let positions = S::points(&mesh, rules, &mesh.positions);
+        let tags = self.sharp.tags;
         if !self.last {
             let child = S::child_mesh(&mesh, positions);
             let child_tags = tags.map(|t| S::child_tags(&mesh, &child, t));

@@ -56,8 +56,13 @@ impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
 }
 
 /// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
-/// on `split` with `rules`; `N` is the width when it is not 0 (a sum unrolled for it). With `linear` (mode `all`, or a linear scheme), every
-/// value is interpolated linearly. `sharp` is the parent level's sharpness.
+/// on `split` with `rules`; `N` is the width when it is not 0 (a sum unrolled for it). With
+/// `linear` (mode `all`, or a linear scheme), every value is interpolated linearly. `sharp` is
+/// the parent level's sharpness. `joint`, when given, holds the values numbered as the child's
+/// vertices as the surface's rules make them from the parent's vertex-numbered values (see
+/// [`crate::fvar::FVarChannel::vertex_values`]): they are right wherever no face around reads
+/// another value, so only the rest is computed here.
+#[allow(clippy::too_many_arguments)]
 pub fn interpolate<F: ValueRules, const N: usize>(
     mesh: &HalfEdgeMesh,
     split: Split,
@@ -66,39 +71,62 @@ pub fn interpolate<F: ValueRules, const N: usize>(
     child: &mut FVarLevel,
     linear: bool,
     sharp: &LevelSharpness,
+    joint: Option<Vec<f32>>,
 ) {
     let width = parent.width;
-    let (nv, nf) = (mesh.num_vertices(), mesh.num_cells());
-    let mut out = vec![0.0f32; child.num_values() * width];
-    let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
-
-    // Every cell's centroid when the rules may weight it (the mixed split's rules read those of
-    // triangles too); the child has those of the cells that get a face point.
+    let nv = mesh.num_vertices();
     let (face_point_of, face_points) = split.face_points(mesh);
-    let mut face_values = Vec::new();
-    if split != Split::Triangle {
-        face_values = vec![0.0f32; nf * width];
-        for (c, face) in face_values.chunks_exact_mut(width.max(1)).enumerate() {
-            let range = mesh.cell_range(c);
-            let scale = 1.0 / range.len() as f32;
-            for h in range {
-                RowSum::add(face, row(parent.corner_values[h]), 1.0);
-            }
-            face.iter_mut().for_each(|x| *x *= scale);
-            if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
-                let at = (nv + k as usize) * width;
-                out[at..at + width].copy_from_slice(face);
+    let edge_base = nv + face_points;
+    // The mixed split's rules read the centroids of triangles too, which get no face point.
+    let joint = joint.filter(|_| split != Split::Mixed && !linear);
+    let near = joint.is_some().then(|| NearSeams::new(mesh, parent));
+    let mut values = joint.unwrap_or_default();
+    values.resize(child.num_values() * width, 0.0);
+    let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
+    let centroid = |face: &mut [f32], c: usize| {
+        let range = mesh.cell_range(c);
+        let scale = 1.0 / range.len() as f32;
+        face.fill(0.0);
+        for h in range {
+            RowSum::add(face, row(parent.corner_values[h]), 1.0);
+        }
+        face.iter_mut().for_each(|x| *x *= scale);
+    };
+
+    // Every cell's centroid when the rules may weight it; the child has those of the cells
+    // that get a face point. With joint values, the quad split's face points are every cell's
+    // centroid in cell order, and only those of cells near a seam are recomputed.
+    let mut own_faces = Vec::new();
+    match &near {
+        Some(near) if split == Split::Quad => {
+            for &c in &near.cells {
+                let at = (nv + c as usize) * width;
+                centroid(&mut values[at..at + width], c as usize);
             }
         }
+        Some(_) => {}
+        None if split != Split::Triangle => {
+            own_faces = vec![0.0f32; mesh.num_cells() * width];
+            for (c, face) in own_faces.chunks_exact_mut(width.max(1)).enumerate() {
+                centroid(face, c);
+                if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
+                    let at = (nv + k as usize) * width;
+                    values[at..at + width].copy_from_slice(face);
+                }
+            }
+        }
+        None => {}
     }
-    let edge_base = nv + face_points;
-    let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, &face_values);
+    let (head, tail) = values.split_at_mut(edge_base * width);
+    let (vertex_values, joint_faces) = head.split_at_mut(nv * width);
+    let face_values = if near.is_some() { &*joint_faces } else { &own_faces[..] };
+    let mut out = Targets { vertex_values, tail, edge_base, width };
+    let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
             *o = 0.5 * (x + y);
         }
     };
-    let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
 
     for e in 0..mesh.num_edges() as u32 {
         let [a, b] = mesh.edge_vertices[e as usize];
@@ -109,30 +137,37 @@ pub fn interpolate<F: ValueRules, const N: usize>(
             // between the values of its face's two corners at the vertex.
             let x = hs[0];
             let (from, to) = (parent.corner_values[x as usize], mesh.next_in_cell(x));
-            midpoint(&mut out[slot(cv)], from, parent.corner_values[to as usize]);
+            midpoint(out.at(cv), from, parent.corner_values[to as usize]);
             continue;
         }
         if child.tags[cv as usize] & tag::MISMATCH == 0 {
+            if near.as_ref().is_some_and(|n| !n.edges[e as usize]) {
+                continue;
+            }
             let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
             if linear {
-                midpoint(&mut out[slot(cv)], ends[0].1, ends[1].1);
+                midpoint(out.at(cv), ends[0].1, ends[1].1);
             } else {
-                sum.eval_into(&mut out[slot(cv)], ends, |w| rules.edge_point(mesh, e, w));
+                sum.eval_into(out.at(cv), ends, |w| rules.edge_point(mesh, e, w));
             }
             continue;
         }
         for (j, &x) in hs.iter().take(child.count(cv) as usize).enumerate() {
             let (va, vb) = (parent.value_at(mesh, x, a), parent.value_at(mesh, x, b));
-            midpoint(&mut out[slot(child.value(cv, j as u32))], va, vb);
+            midpoint(out.at(child.value(cv, j as u32)), va, vb);
         }
     }
 
     for v in 0..nv as u32 {
         if parent.tags[v as usize] & tag::MISMATCH == 0 {
-            if linear || mesh.out_half_edges(v).is_empty() {
-                out[slot(v)].copy_from_slice(row(v));
+            let isolated = mesh.out_half_edges(v).is_empty();
+            if !isolated && near.as_ref().is_some_and(|n| !n.vertices[v as usize]) {
+                continue;
+            }
+            if linear || isolated {
+                out.at(v).copy_from_slice(row(v));
             } else {
-                sum.eval_into(&mut out[slot(v)], [(v, v); 2], |w| rules.vertex_point(mesh, v, w));
+                sum.eval_into(out.at(v), [(v, v); 2], |w| rules.vertex_point(mesh, v, w));
             }
             continue;
         }
@@ -141,7 +176,7 @@ pub fn interpolate<F: ValueRules, const N: usize>(
             let (p, c) = (parent.value(v, j), child.value(v, j));
             let child_tag = child.tags[c as usize];
             if linear || child_tag & tag::CREASE == 0 {
-                out[slot(c)].copy_from_slice(row(p));
+                out.at(c).copy_from_slice(row(p));
                 continue;
             }
             // A crease, or a corner turning into one: its ends are across the span's two
@@ -161,14 +196,68 @@ pub fn interpolate<F: ValueRules, const N: usize>(
                 vertex_weight = crease * 0.75 + corner;
                 end_weight = crease * 0.125;
             }
-            let target = &mut out[slot(c)];
+            let target = out.at(c);
             target.fill(0.0);
             RowSum::add(target, row(e0), end_weight);
             RowSum::add(target, row(e1), end_weight);
             RowSum::add(target, row(p), vertex_weight);
         }
     }
-    child.values = out;
+    child.values = values;
+}
+
+/// Where a level's new values go, but for the face points, which the rules read meanwhile:
+/// the old vertices' values, and the edge points' values with the extra values after them.
+struct Targets<'o> {
+    vertex_values: &'o mut [f32],
+    tail: &'o mut [f32],
+    edge_base: usize,
+    width: usize,
+}
+
+impl Targets<'_> {
+    #[inline(always)]
+    fn at(&mut self, i: u32) -> &mut [f32] {
+        let (i, width) = (i as usize, self.width);
+        if i < self.edge_base {
+            &mut self.vertex_values[i * width..(i + 1) * width]
+        } else {
+            let i = i - self.edge_base;
+            &mut self.tail[i * width..(i + 1) * width]
+        }
+    }
+}
+
+/// The cells with a corner that sees a value other than its vertex's first (only next to
+/// seams and the values after them), and their vertices and edges: the rules of every other
+/// new value read vertex-numbered values only.
+struct NearSeams {
+    cells: Vec<u32>,
+    vertices: Vec<bool>,
+    edges: Vec<bool>,
+}
+
+impl NearSeams {
+    fn new(mesh: &HalfEdgeMesh, level: &FVarLevel) -> Self {
+        let mut near = NearSeams {
+            cells: Vec::new(),
+            vertices: vec![false; mesh.num_vertices()],
+            edges: vec![false; mesh.num_edges()],
+        };
+        for c in 0..mesh.num_cells() {
+            let range = mesh.cell_range(c);
+            let sees_other = |h: usize| level.corner_values[h] != mesh.he_from[h];
+            if !range.clone().any(sees_other) {
+                continue;
+            }
+            near.cells.push(c as u32);
+            for h in range {
+                near.vertices[mesh.he_from[h] as usize] = true;
+                near.edges[mesh.he_edge[h] as usize] = true;
+            }
+        }
+        near
+    }
 }
 
 /// How much of the corner rule a value keeps as its span's sharpness decays to smooth: the mean

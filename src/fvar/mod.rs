@@ -119,6 +119,8 @@ impl ModeRules {
 }
 
 use crate::mesh::HalfEdgeMesh;
+use crate::primvar::Channel;
+use std::borrow::Cow;
 
 /// A face-varying channel between levels (several channels with the same indices travel as
 /// one, side by side).
@@ -148,6 +150,24 @@ impl FVarChannel {
         sharp: &LevelSharpness,
         mode: FVarLinear,
     ) {
+        let child = self.begin(mesh, split, sharp, mode);
+        self.finish(mesh, split, rules, child, linear, sharp, mode, None);
+    }
+
+    /// True when the values that match the surface take the surface's own rules (see
+    /// [`FVarChannel::vertex_values`]): every mode but `all`, on a scheme that is not linear.
+    pub fn follows_surface(linear: bool, mode: FVarLinear) -> bool {
+        !linear && !ModeRules::new(mode).linear
+    }
+
+    /// The first step of [`FVarChannel::refine`]: the next level's topology, without values.
+    pub fn begin(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        split: Split,
+        sharp: &LevelSharpness,
+        mode: FVarLinear,
+    ) -> FVarLevel {
         let mode = ModeRules::new(mode);
         if !self.analysed {
             let given = std::mem::take(&mut self.level);
@@ -161,17 +181,45 @@ impl FVarChannel {
             );
             self.analysed = true;
         }
-        let mut child = self.level.child_topology(mesh, split, sharp, mode);
-        let (parent, linear) = (&self.level, linear || mode.linear);
+        self.level.child_topology(mesh, split, sharp, mode)
+    }
+
+    /// The values numbered as the vertices of `mesh` (each vertex's first value), as one
+    /// vertex-varying channel: where no seam is near, a value's rule reads only these, so the
+    /// host can refine them in its own walk of the rules (after [`FVarChannel::begin`]).
+    pub fn vertex_values(&self, mesh: &HalfEdgeMesh) -> Channel<'_> {
+        let width = self.level.width;
+        let end = (mesh.num_vertices() * width).min(self.level.values.len());
+        Channel { width, values: Cow::Borrowed(&self.level.values[..end]) }
+    }
+
+    /// The second step of [`FVarChannel::refine`]: the values of `child`. With `joint`, the
+    /// values numbered as `child`'s vertices that the host refined from
+    /// [`FVarChannel::vertex_values`] with the surface's rules: only the values near seams and
+    /// the mismatched ones are computed here.
+    #[allow(clippy::too_many_arguments)]
+    pub fn finish(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        split: Split,
+        rules: &impl ValueRules,
+        mut child: FVarLevel,
+        linear: bool,
+        sharp: &LevelSharpness,
+        mode: FVarLinear,
+        joint: Option<Vec<f32>>,
+    ) {
+        let linear = linear || ModeRules::new(mode).linear;
+        let parent = &self.level;
         // Natively, UVs get a sum unrolled for two floats (about 10 % of a textured call on the
         // 1M-quad torus); in wasm it bought nothing measurable for 82 KB of code.
         #[cfg(not(target_arch = "wasm32"))]
         if parent.width == 2 {
-            interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp);
+            interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp, joint);
             self.level = child;
             return;
         }
-        interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp);
+        interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp, joint);
         self.level = child;
     }
 

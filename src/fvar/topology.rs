@@ -307,7 +307,11 @@ impl FVarLevel {
         }
 
         let mut numbering = Numbering::new(nv);
-        let mut values_out = vec![0.0f32; nv * width];
+        // Room for a second value at each mismatched vertex (a seam's, most often), so that the
+        // values after the vertices' first ones seldom move the whole array.
+        let mismatched = mismatch.iter().filter(|&&m| m).count();
+        let mut values_out = Vec::with_capacity((nv + 2 * mismatched) * width);
+        values_out.resize(nv * width, 0.0f32);
         let mut extra_values = Vec::new();
         let mut corner_values = vec![0u32; mesh.num_half_edges()];
         let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
@@ -568,8 +572,29 @@ impl FVarLevel {
             next.value(cv, sides.iter().position(|&y| y == x).unwrap_or(0) as u32)
         };
         let mut corners = Vec::with_capacity(4 * mesh.num_half_edges());
+        // A cell whose corners see their vertices' first values and whose edges are no seams
+        // (all cells away from seams) has child corners that see the child vertices: the
+        // child faces' own indices.
+        let clean = |cell: &std::ops::Range<usize>| {
+            cell.clone().all(|h| {
+                self.corner_values[h] == mesh.he_from[h]
+                    && self.edge_tag(mesh.he_edge[h]) & edge_tag::MISMATCH == 0
+            })
+        };
         for c in 0..mesh.num_cells() as u32 {
             let cell = mesh.cell_range(c as usize);
+            if split == Split::Quad && clean(&cell) {
+                let face = (nv as u32) + face_point_of[c as usize];
+                let edge_point = |h: usize| edge_base as u32 + mesh.he_edge[h];
+                let last = cell.end - 1;
+                let mut previous = edge_point(last);
+                for h in cell {
+                    let next = edge_point(h);
+                    corners.extend_from_slice(&[mesh.he_from[h], next, face, previous]);
+                    previous = next;
+                }
+                continue;
+            }
             if split.splits_into_triangles(mesh, c) {
                 let [h0, h1, h2] = [0, 1, 2].map(|k| (cell.start + k) as u32);
                 let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
