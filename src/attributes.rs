@@ -101,7 +101,9 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
                 format!("{} values is not a multiple of itemSize {}", a.values.len(), a.item_size),
             ));
         }
-        if let Some(k) = a.values.iter().position(|x| !x.is_finite()) {
+        // A pass without an early exit vectorizes; the place is looked for only on failure.
+        let all_finite = a.values.iter().fold(true, |ok, x| ok & x.is_finite());
+        if let Some(k) = a.values.iter().position(|x| !x.is_finite()).filter(|_| !all_finite) {
             return Err(invalid(
                 name,
                 format!(
@@ -134,7 +136,10 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
                         ),
                     ));
                 }
-                if let Some(k) = indices.iter().position(|&x| x as usize >= a.len()) {
+                let largest = indices.iter().fold(0, |m, &x| m.max(x));
+                let in_range = indices.is_empty() || (largest as usize) < a.len();
+                let out_of_range = |&x: &u32| x as usize >= a.len();
+                if let Some(k) = indices.iter().position(out_of_range).filter(|_| !in_range) {
                     return Err(invalid(
                         name,
                         format!(
@@ -171,14 +176,33 @@ pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows, RowLayout) {
     if width == 0 {
         return (Rows::default(), layout);
     }
-    let mut values = vec![0.0f32; vertices * width];
-    for (i, _, size, column) in &layout.channels {
-        let source = &attributes[*i].values;
-        for (row, value) in values.chunks_exact_mut(width).zip(source.chunks_exact(*size)) {
-            row[*column..column + size].copy_from_slice(value);
+    let members = layout.channels.iter().map(|&(i, _, size, column)| (i, size, column));
+    let values = interleave(attributes, members, vertices, width);
+    (Rows { width, values }, layout)
+}
+
+/// `count` rows of `width` floats, with the values of each member `(attribute index, item
+/// size, first column)` side by side. A lone member is copied as it is (one memcpy, not one
+/// per row).
+fn interleave(
+    attributes: &[Attribute],
+    members: impl ExactSizeIterator<Item = (usize, usize, usize)>,
+    count: usize,
+    width: usize,
+) -> Vec<f32> {
+    let lone = members.len() == 1;
+    let mut values = Vec::new();
+    for (i, size, column) in members {
+        let source = &attributes[i].values;
+        if lone {
+            return source[..(count * size).min(source.len())].to_vec();
+        }
+        values.resize(count * width, 0.0);
+        for (row, value) in values.chunks_exact_mut(width).zip(source.chunks_exact(size)) {
+            row[column..column + size].copy_from_slice(value);
         }
     }
-    (Rows { width, values }, layout)
+    values
 }
 
 /// The channels of `layout` taken back out of `rows`. A lone channel takes the rows' values as
@@ -238,13 +262,8 @@ pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLay
         .map(|(members, indices)| {
             let width: usize = members.iter().map(|m| m.2).sum();
             let count = members.iter().map(|m| attributes[m.0].len()).min().unwrap_or(0);
-            let mut values = vec![0.0f32; count * width];
-            for (i, _, size, column) in members {
-                let source = &attributes[*i].values;
-                for (row, value) in values.chunks_exact_mut(width).zip(source.chunks_exact(*size)) {
-                    row[*column..column + size].copy_from_slice(value);
-                }
-            }
+            let members = members.iter().map(|&(i, _, size, column)| (i, size, column));
+            let values = interleave(attributes, members, count, width);
             FVarChannel::new(width, values, indices.to_vec())
         })
         .collect();

@@ -344,7 +344,7 @@ fn sum_entries<const W: usize>(
         // A select, not a branch: vertices and face points alternate in no set pattern.
         let source = sources[(i >> 31) as usize];
         let start = (i & !FACE_POINT) as usize * W;
-        if let Some(row) = source.get(start..start + W) {
+        if let Some(row) = source.get(start..).and_then(|r| r.first_chunk::<W>()) {
             for k in 0..W {
                 sum[k] += row[k] * weight;
             }
@@ -411,7 +411,9 @@ impl Primvar for Joint<'_> {
             let faces = face_points.and_then(|f| f.channels.get(i)).map_or(&[][..], |f| &f.values);
             (c.width, &c.values[..], faces)
         });
-        JointSum { he_from, channels: channels.collect(), entries: Vec::new(), scale: 1.0 }
+        // Room for the points of a vertex of valence 30 without growing.
+        let entries = Vec::with_capacity(64);
+        JointSum { he_from, channels: channels.collect(), entries, scale: 1.0 }
     }
 
     fn with_capacity(&self, capacity: usize) -> Self {

@@ -314,6 +314,7 @@ impl FVarLevel {
         values_out.resize(nv * width, 0.0f32);
         let mut extra_values = Vec::new();
         let mut corner_values = vec![0u32; mesh.num_half_edges()];
+        let mut one_value = vec![false; nv];
         let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
         let maybe_non_manifold =
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
@@ -329,11 +330,11 @@ impl FVarLevel {
                 let value = indices[first_corner as usize];
                 // Faces around a non-manifold vertex may disagree without any seam.
                 if manifold || out.iter().all(|&h| indices[h as usize] == value) {
-                    values_out[v as usize * width..(v as usize + 1) * width]
-                        .copy_from_slice(row(value));
-                    for &h in out {
-                        corner_values[h as usize] = v;
+                    let target = &mut values_out[v as usize * width..(v as usize + 1) * width];
+                    for (t, &x) in target.iter_mut().zip(row(value)) {
+                        *t = x;
                     }
+                    one_value[v as usize] = true;
                     continue;
                 }
             }
@@ -429,6 +430,13 @@ impl FVarLevel {
             }
         }
         values_out.extend_from_slice(&extra_values);
+        // The corners of the vertices with one value see it, numbered as the vertex: set in
+        // half-edge order, not vertex by vertex (a scatter over the whole array).
+        for (value, &v) in corner_values.iter_mut().zip(&mesh.he_from) {
+            if one_value[v as usize] {
+                *value = v;
+            }
+        }
         numbering.finish(width, values_out, corner_values, edge_tags)
     }
 
