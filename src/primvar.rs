@@ -379,8 +379,9 @@ fn sum_entries_into(
 }
 
 impl Joint<'_> {
-    /// Appends the rows that `sum`'s entries give.
-    #[inline(always)]
+    /// Appends the rows that `sum`'s entries give. (One copy for every host and rule set: the
+    /// walk is what they differ in.)
+    #[inline(never)]
     fn push_sum(&mut self, sum: &JointSum<'_>) {
         for (channel, &source) in self.channels.iter_mut().zip(&sum.channels) {
             let values = channel.values.to_mut();
