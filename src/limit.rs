@@ -106,7 +106,7 @@ pub fn limit_face_varying(
     let width = level.width;
     let mut out = level.values.clone();
     let slot = |i: u32| i as usize * width..(i as usize + 1) * width;
-    let mut sum = FVarSum::<0>::new(&level.values, width, &level.corner_values, &[]);
+    let mut sum = FVarSum::new(&level.values, width, &level.corner_values, &[]);
     let mut hood = Neighbourhood::default();
     for v in mesh.vertex_indices() {
         if mesh.out_half_edges(v).is_empty() {

@@ -167,13 +167,12 @@ impl Weights for RowSum<'_> {
 pub const FVAR_MAX_WIDTH: usize = 16;
 
 /// Sums weighted rows of a face-varying channel (`width` floats per value, at most
-/// [`FVAR_MAX_WIDTH`], summed in a fixed array: no allocation per value; `N` floats when `N` is
-/// not 0, a sum the compiler unrolls) for one new value whose vertex topology matches the
+/// [`FVAR_MAX_WIDTH`], summed in a fixed array: no allocation per value) for one new value whose vertex topology matches the
 /// surface's: corners resolve through `corner_values` (the value each parent face corner
 /// sees), face points are the child level's `face_values` by cell, and a rule's `vertex(v)` is
 /// the value `ends` gives for `v` (the moving vertex's value, or an edge's end values as one of
 /// its faces sees them).
-pub struct FVarSum<'a, const N: usize> {
+pub struct FVarSum<'a> {
     values: &'a [f32],
     width: usize,
     corner_values: &'a [u32],
@@ -183,25 +182,16 @@ pub struct FVarSum<'a, const N: usize> {
     scale: f32,
 }
 
-impl<'a, const N: usize> FVarSum<'a, N> {
+impl<'a> FVarSum<'a> {
     pub fn new(
         values: &'a [f32],
         width: usize,
         corner_values: &'a [u32],
         face_values: &'a [f32],
     ) -> Self {
-        let width = if N > 0 { N } else { width.min(FVAR_MAX_WIDTH) };
+        let width = width.min(FVAR_MAX_WIDTH);
         let sum = [0.0; FVAR_MAX_WIDTH];
         FVarSum { values, width, corner_values, face_values, ends: [(0, 0); 2], sum, scale: 1.0 }
-    }
-
-    #[inline(always)]
-    fn width(&self) -> usize {
-        if N > 0 {
-            N
-        } else {
-            self.width
-        }
     }
 
     /// Writes into `out` the value whose weights `rule` gives, with `ends` resolving
@@ -214,7 +204,7 @@ impl<'a, const N: usize> FVarSum<'a, N> {
         rule: impl FnOnce(&mut Self),
     ) {
         self.ends = ends;
-        let width = self.width();
+        let width = self.width;
         self.sum[..width].fill(0.0);
         rule(self);
         out[..width].copy_from_slice(&self.sum[..width]);
@@ -222,7 +212,7 @@ impl<'a, const N: usize> FVarSum<'a, N> {
 
     #[inline(always)]
     fn add_row(&mut self, source: &[f32], index: usize, weight: f32) {
-        let width = self.width();
+        let width = self.width;
         let row = &source[index * width..(index + 1) * width];
         let weight = weight * self.scale;
         for (s, &x) in self.sum[..width].iter_mut().zip(row) {
@@ -231,7 +221,7 @@ impl<'a, const N: usize> FVarSum<'a, N> {
     }
 }
 
-impl<const N: usize> Weights for FVarSum<'_, N> {
+impl Weights for FVarSum<'_> {
     #[inline(always)]
     fn vertex(&mut self, v: u32, weight: f32) {
         let value = if self.ends[0].0 == v { self.ends[0].1 } else { self.ends[1].1 };

@@ -136,7 +136,7 @@ fn dual<R: CornerRules>(
     let mut values = vec![0.0f32; (own_count + copied.len()) * width];
     let (own, copies) = values.split_at_mut(own_count * width);
     let (corners, chaikin_points) = own.split_at_mut(nh * width);
-    let mut sum = FVarSum::<0>::new(&parent.values, width, cv, &[]);
+    let mut sum = FVarSum::new(&parent.values, width, cv, &[]);
     let ends = [(0, 0); 2];
     for (h, out) in corners.chunks_exact_mut(width).enumerate() {
         sum.eval_into(out, ends, |w| rules.corner_point(mesh, h as u32, w));

@@ -56,14 +56,13 @@ impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
 }
 
 /// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
-/// on `split` with `rules`; `N` is the width when it is not 0 (a sum unrolled for it). With
-/// `linear` (mode `all`, or a linear scheme), every value is interpolated linearly. `sharp` is
-/// the parent level's sharpness. `joint`, when given, holds the values numbered as the child's
-/// vertices as the surface's rules make them from the parent's vertex-numbered values (see
-/// [`crate::fvar::FVarChannel::vertex_values`]): they are right wherever no face around reads
-/// another value, so only the rest is computed here.
+/// on `split` with `rules`. With `linear` (mode `all`, or a linear scheme), every value is
+/// interpolated linearly. `sharp` is the parent level's sharpness. `joint`, when given, holds
+/// the values numbered as the child's vertices as the surface's rules make them from the
+/// parent's vertex-numbered values (see [`crate::fvar::FVarChannel::vertex_values`]): they are
+/// right wherever no face around reads another value, so only the rest is computed here.
 #[allow(clippy::too_many_arguments)]
-pub fn interpolate<F: ValueRules, const N: usize>(
+pub fn interpolate<F: ValueRules>(
     mesh: &HalfEdgeMesh,
     split: Split,
     rules: &F,
@@ -121,7 +120,7 @@ pub fn interpolate<F: ValueRules, const N: usize>(
     let (vertex_values, joint_faces) = head.split_at_mut(nv * width);
     let face_values = if near.is_some() { &*joint_faces } else { &own_faces[..] };
     let mut out = Targets { vertex_values, tail, edge_base, width };
-    let mut sum = FVarSum::<N>::new(&parent.values, width, &parent.corner_values, face_values);
+    let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
             *o = 0.5 * (x + y);

@@ -211,15 +211,7 @@ impl FVarChannel {
     ) {
         let linear = linear || ModeRules::new(mode).linear;
         let parent = &self.level;
-        // Natively, UVs get a sum unrolled for two floats (about 10 % of a textured call on the
-        // 1M-quad torus); in wasm it bought nothing measurable for 82 KB of code.
-        #[cfg(not(target_arch = "wasm32"))]
-        if parent.width == 2 {
-            interpolate::<_, 2>(mesh, split, rules, parent, &mut child, linear, sharp, joint);
-            self.level = child;
-            return;
-        }
-        interpolate::<_, 0>(mesh, split, rules, parent, &mut child, linear, sharp, joint);
+        interpolate(mesh, split, rules, parent, &mut child, linear, sharp, joint);
         self.level = child;
     }
 

@@ -139,7 +139,7 @@ impl<R: Sqrt3Rules> Sqrt3Level<'_, R> {
 
         let mut values = vec![0.0f32; total * width];
         let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
-        let mut sum = FVarSum::<0>::new(&parent.values, width, cv, &[]);
+        let mut sum = FVarSum::new(&parent.values, width, cv, &[]);
         let (old, rest) = values.split_at_mut(nv * width);
         let (new, rest) = rest.split_at_mut((num_child_vertices - nv) * width);
         let (further_values, mids) = rest.split_at_mut(further.len() * width);
