@@ -545,7 +545,7 @@ impl StencilTable {
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
         self.sum_rows(
-            [[0.0f32; 4]; 3],
+            [Lanes::ZERO; 3],
             |[p, a, b], e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
                 // one per entry (`with_tangent_weights`), and entries name control vertices
@@ -555,15 +555,13 @@ impl StencilTable {
                     let x = control.get_unchecked(c);
                     (x, *self.weights.get_unchecked(e), *t1.get_unchecked(e), *t2.get_unchecked(e))
                 };
-                for k in 0..4 {
-                    p[k] += x[k] * w;
-                    a[k] += x[k] * w1;
-                    b[k] += x[k] * w2;
-                }
+                *p = p.add_scaled(x, w);
+                *a = a.add_scaled(x, w1);
+                *b = b.add_scaled(x, w2);
             },
             |i, [p, a, b]| {
-                positions[i] = [p[0], p[1], p[2]];
-                normals[i] = crate::limit::normal([a[0], a[1], a[2]], [b[0], b[1], b[2]]);
+                positions[i] = p.xyz();
+                normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
         Ok(())
@@ -629,18 +627,16 @@ impl StencilTable {
         let padded = pad(control);
         let (out, _) = out.as_chunks_mut::<3>();
         self.sum_rows(
-            [0.0f32; 4],
+            Lanes::ZERO,
             |sum, e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), and every control index of
                 // a table is below its `num_control` (the rows are built from the control
                 // vertices' own stencils); `check_lengths` made `control`, so `padded`, hold
                 // `num_control` points.
                 let (x, w) = unsafe { self.entry(&padded, e) };
-                for k in 0..4 {
-                    sum[k] += x[k] * w;
-                }
+                *sum = sum.add_scaled(x, w);
             },
-            |i, sum| out[i] = [sum[0], sum[1], sum[2]],
+            |i, sum| out[i] = sum.xyz(),
         );
     }
 
@@ -713,6 +709,63 @@ impl StencilTable {
 /// Points of three floats as four (the fourth 0), for 128-bit loads.
 fn pad(points: &[f32]) -> Vec<[f32; 4]> {
     points.as_chunks::<3>().0.iter().map(|&[x, y, z]| [x, y, z, 0.0]).collect()
+}
+
+/// Four f32 sums in one 128-bit register: a padded point times a weight, added, is one load,
+/// one multiply and one add. In wasm they are spelled out with `simd128` intrinsics: written
+/// as a loop over `[f32; 4]`, LLVM saw that the fourth lane is never stored and split the other
+/// three into scalar multiply-adds, which V8 ran as such (three times the arithmetic of a point).
+/// Multiply then add, lane by lane, as the scalar loop: the sums are bit-identical.
+#[derive(Clone, Copy)]
+struct Lanes(
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))] core::arch::wasm32::v128,
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))] [f32; 4],
+);
+
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+impl Lanes {
+    const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
+
+    /// `self + x * w`.
+    #[inline(always)]
+    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        use core::arch::wasm32::{f32x4_add, f32x4_mul, f32x4_splat, v128, v128_load};
+        // SAFETY: `x` is 16 readable bytes; wasm loads need no alignment.
+        let x = unsafe { v128_load(x.as_ptr().cast::<v128>()) };
+        Lanes(f32x4_add(self.0, f32x4_mul(x, f32x4_splat(w))))
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    fn xyz(self) -> [f32; 3] {
+        use core::arch::wasm32::f32x4_extract_lane;
+        [
+            f32x4_extract_lane::<0>(self.0),
+            f32x4_extract_lane::<1>(self.0),
+            f32x4_extract_lane::<2>(self.0),
+        ]
+    }
+}
+
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+impl Lanes {
+    const ZERO: Lanes = Lanes([0.0; 4]);
+
+    /// `self + x * w`.
+    #[inline(always)]
+    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        let mut sum = self.0;
+        for k in 0..4 {
+            sum[k] += x[k] * w;
+        }
+        Lanes(sum)
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    fn xyz(self) -> [f32; 3] {
+        [self.0[0], self.0[1], self.0[2]]
+    }
 }
 
 #[cfg(test)]
