@@ -82,12 +82,21 @@ impl Stencils {
             self.overflowed = true;
             return [start as u32, 0];
         }
-        for &c in touched.iter() {
-            let (w, _) = sums[c as usize];
-            if w != 0.0 {
-                self.indices.push(c);
-                self.weights.push(w as f32);
+        // Whole slices, so that the copies run without a capacity check per entry; a weight
+        // that cancelled to zero (rare) is taken out after.
+        self.indices.extend_from_slice(touched);
+        self.weights.extend(touched.iter().map(|&c| sums[c as usize].0 as f32));
+        if self.weights[start..].contains(&0.0) {
+            let mut kept = start;
+            for k in start..self.weights.len() {
+                if self.weights[k] != 0.0 {
+                    self.indices[kept] = self.indices[k];
+                    self.weights[kept] = self.weights[k];
+                    kept += 1;
+                }
             }
+            self.indices.truncate(kept);
+            self.weights.truncate(kept);
         }
         [start as u32, (self.indices.len() - start) as u32]
     }
@@ -152,7 +161,10 @@ pub(crate) struct StencilSum<'a> {
     /// side: one cache line per touch).
     sums: Vec<(f64, u32)>,
     stamp: u32,
+    /// The row's control vertices, `touched[..count]`: one slot per control vertex, so that
+    /// listing one needs no capacity check.
     touched: Vec<u32>,
+    count: usize,
     /// The product of the scales of the open groups.
     scale: f32,
     /// The parents' overflow, passed on to every row made from them.
@@ -160,26 +172,36 @@ pub(crate) struct StencilSum<'a> {
 }
 
 impl StencilSum<'_> {
+    /// Adds `weight` times row `i` of `source`. The sums, the touched list and the stamp are
+    /// taken into locals first: as fields of `self` they were read again after every store
+    /// (the stores might have changed them, as far as LLVM could tell), in wasm twice the work.
     #[inline]
     fn gather(&mut self, source: &Stencils, i: usize, weight: f32) {
         let weight = f64::from(weight * self.scale);
         let (controls, weights) = source.row(i);
+        let stamp = self.stamp;
+        let sums = &mut self.sums[..];
+        let touched = &mut self.touched[..];
+        let mut count = self.count;
         for (&c, &w) in controls.iter().zip(weights) {
-            let slot = c as usize;
             let product = f64::from(w) * weight;
-            let entry = &mut self.sums[slot];
-            if entry.1 == self.stamp {
+            let entry = &mut sums[c as usize];
+            if entry.1 == stamp {
                 entry.0 += product;
             } else {
-                *entry = (product, self.stamp);
-                self.touched.push(c);
+                *entry = (product, stamp);
+                // A control vertex is listed once per row, so fewer than `touched.len()`
+                // (the control count) are listed.
+                touched[count] = c;
+                count += 1;
             }
         }
+        self.count = count;
     }
 
     /// Runs `rule` and appends the row it gives to `out`; returns the row's span.
     fn row_into(&mut self, out: &mut Stencils, rule: impl FnOnce(&mut Self)) -> [u32; 2] {
-        self.touched.clear();
+        self.count = 0;
         self.scale = 1.0;
         if self.stamp == u32::MAX {
             self.sums.iter_mut().for_each(|e| e.1 = 0);
@@ -188,7 +210,7 @@ impl StencilSum<'_> {
         self.stamp += 1;
         rule(self);
         out.overflowed |= self.overflowed;
-        out.append_row(&mut self.touched, &self.sums)
+        out.append_row(&mut self.touched[..self.count], &self.sums)
     }
 }
 
@@ -235,7 +257,8 @@ impl Primvar for Stencils {
             face_points,
             sums: vec![(0.0, 0); self.num_control],
             stamp: 0,
-            touched: Vec::with_capacity(256),
+            touched: vec![0; self.num_control],
+            count: 0,
             scale: 1.0,
             overflowed: self.overflowed || face_points.overflowed,
         }
