@@ -85,8 +85,13 @@ impl Stencils {
         // Whole slices, so that the copies run without a capacity check per entry; a weight
         // that cancelled to zero (rare) is taken out after.
         self.indices.extend_from_slice(touched);
-        self.weights.extend(touched.iter().map(|&c| sums[c as usize].0 as f32));
-        if self.weights[start..].contains(&0.0) {
+        let mut zero = false;
+        self.weights.extend(touched.iter().map(|&c| {
+            let w = sums[c as usize].0 as f32;
+            zero |= w == 0.0;
+            w
+        }));
+        if zero {
             let mut kept = start;
             for k in start..self.weights.len() {
                 if self.weights[k] != 0.0 {
