@@ -82,12 +82,26 @@ impl Stencils {
             self.overflowed = true;
             return [start as u32, 0];
         }
-        for &c in touched.iter() {
-            let (w, _) = sums[c as usize];
-            if w != 0.0 {
-                self.indices.push(c);
-                self.weights.push(w as f32);
+        // Whole slices, so that the copies run without a capacity check per entry; a weight
+        // that cancelled to zero (rare) is taken out after.
+        self.indices.extend_from_slice(touched);
+        let mut zero = false;
+        self.weights.extend(touched.iter().map(|&c| {
+            let w = sums[c as usize].0 as f32;
+            zero |= w == 0.0;
+            w
+        }));
+        if zero {
+            let mut kept = start;
+            for k in start..self.weights.len() {
+                if self.weights[k] != 0.0 {
+                    self.indices[kept] = self.indices[k];
+                    self.weights[kept] = self.weights[k];
+                    kept += 1;
+                }
             }
+            self.indices.truncate(kept);
+            self.weights.truncate(kept);
         }
         [start as u32, (self.indices.len() - start) as u32]
     }
@@ -152,7 +166,10 @@ pub(crate) struct StencilSum<'a> {
     /// side: one cache line per touch).
     sums: Vec<(f64, u32)>,
     stamp: u32,
+    /// The row's control vertices, `touched[..count]`: one slot per control vertex, so that
+    /// listing one needs no capacity check.
     touched: Vec<u32>,
+    count: usize,
     /// The product of the scales of the open groups.
     scale: f32,
     /// The parents' overflow, passed on to every row made from them.
@@ -160,26 +177,36 @@ pub(crate) struct StencilSum<'a> {
 }
 
 impl StencilSum<'_> {
+    /// Adds `weight` times row `i` of `source`. The sums, the touched list and the stamp are
+    /// taken into locals first: as fields of `self` they were read again after every store
+    /// (the stores might have changed them, as far as LLVM could tell), in wasm twice the work.
     #[inline]
     fn gather(&mut self, source: &Stencils, i: usize, weight: f32) {
         let weight = f64::from(weight * self.scale);
         let (controls, weights) = source.row(i);
+        let stamp = self.stamp;
+        let sums = &mut self.sums[..];
+        let touched = &mut self.touched[..];
+        let mut count = self.count;
         for (&c, &w) in controls.iter().zip(weights) {
-            let slot = c as usize;
             let product = f64::from(w) * weight;
-            let entry = &mut self.sums[slot];
-            if entry.1 == self.stamp {
+            let entry = &mut sums[c as usize];
+            if entry.1 == stamp {
                 entry.0 += product;
             } else {
-                *entry = (product, self.stamp);
-                self.touched.push(c);
+                *entry = (product, stamp);
+                // A control vertex is listed once per row, so fewer than `touched.len()`
+                // (the control count) are listed.
+                touched[count] = c;
+                count += 1;
             }
         }
+        self.count = count;
     }
 
     /// Runs `rule` and appends the row it gives to `out`; returns the row's span.
     fn row_into(&mut self, out: &mut Stencils, rule: impl FnOnce(&mut Self)) -> [u32; 2] {
-        self.touched.clear();
+        self.count = 0;
         self.scale = 1.0;
         if self.stamp == u32::MAX {
             self.sums.iter_mut().for_each(|e| e.1 = 0);
@@ -188,7 +215,7 @@ impl StencilSum<'_> {
         self.stamp += 1;
         rule(self);
         out.overflowed |= self.overflowed;
-        out.append_row(&mut self.touched, &self.sums)
+        out.append_row(&mut self.touched[..self.count], &self.sums)
     }
 }
 
@@ -235,7 +262,8 @@ impl Primvar for Stencils {
             face_points,
             sums: vec![(0.0, 0); self.num_control],
             stamp: 0,
-            touched: Vec::with_capacity(256),
+            touched: vec![0; self.num_control],
+            count: 0,
             scale: 1.0,
             overflowed: self.overflowed || face_points.overflowed,
         }
@@ -545,7 +573,7 @@ impl StencilTable {
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
         self.sum_rows(
-            [[0.0f32; 4]; 3],
+            [Lanes::ZERO; 3],
             |[p, a, b], e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
                 // one per entry (`with_tangent_weights`), and entries name control vertices
@@ -555,15 +583,13 @@ impl StencilTable {
                     let x = control.get_unchecked(c);
                     (x, *self.weights.get_unchecked(e), *t1.get_unchecked(e), *t2.get_unchecked(e))
                 };
-                for k in 0..4 {
-                    p[k] += x[k] * w;
-                    a[k] += x[k] * w1;
-                    b[k] += x[k] * w2;
-                }
+                *p = p.add_scaled(x, w);
+                *a = a.add_scaled(x, w1);
+                *b = b.add_scaled(x, w2);
             },
             |i, [p, a, b]| {
-                positions[i] = [p[0], p[1], p[2]];
-                normals[i] = crate::limit::normal([a[0], a[1], a[2]], [b[0], b[1], b[2]]);
+                positions[i] = p.xyz();
+                normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
         Ok(())
@@ -629,18 +655,16 @@ impl StencilTable {
         let padded = pad(control);
         let (out, _) = out.as_chunks_mut::<3>();
         self.sum_rows(
-            [0.0f32; 4],
+            Lanes::ZERO,
             |sum, e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), and every control index of
                 // a table is below its `num_control` (the rows are built from the control
                 // vertices' own stencils); `check_lengths` made `control`, so `padded`, hold
                 // `num_control` points.
                 let (x, w) = unsafe { self.entry(&padded, e) };
-                for k in 0..4 {
-                    sum[k] += x[k] * w;
-                }
+                *sum = sum.add_scaled(x, w);
             },
-            |i, sum| out[i] = [sum[0], sum[1], sum[2]],
+            |i, sum| out[i] = sum.xyz(),
         );
     }
 
@@ -713,6 +737,63 @@ impl StencilTable {
 /// Points of three floats as four (the fourth 0), for 128-bit loads.
 fn pad(points: &[f32]) -> Vec<[f32; 4]> {
     points.as_chunks::<3>().0.iter().map(|&[x, y, z]| [x, y, z, 0.0]).collect()
+}
+
+/// Four f32 sums in one 128-bit register: a padded point times a weight, added, is one load,
+/// one multiply and one add. In wasm they are spelled out with `simd128` intrinsics: written
+/// as a loop over `[f32; 4]`, LLVM saw that the fourth lane is never stored and split the other
+/// three into scalar multiply-adds, which V8 ran as such (three times the arithmetic of a point).
+/// Multiply then add, lane by lane, as the scalar loop: the sums are bit-identical.
+#[derive(Clone, Copy)]
+struct Lanes(
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))] core::arch::wasm32::v128,
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))] [f32; 4],
+);
+
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+impl Lanes {
+    const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
+
+    /// `self + x * w`.
+    #[inline(always)]
+    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        use core::arch::wasm32::{f32x4_add, f32x4_mul, f32x4_splat, v128, v128_load};
+        // SAFETY: `x` is 16 readable bytes; wasm loads need no alignment.
+        let x = unsafe { v128_load(x.as_ptr().cast::<v128>()) };
+        Lanes(f32x4_add(self.0, f32x4_mul(x, f32x4_splat(w))))
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    fn xyz(self) -> [f32; 3] {
+        use core::arch::wasm32::f32x4_extract_lane;
+        [
+            f32x4_extract_lane::<0>(self.0),
+            f32x4_extract_lane::<1>(self.0),
+            f32x4_extract_lane::<2>(self.0),
+        ]
+    }
+}
+
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+impl Lanes {
+    const ZERO: Lanes = Lanes([0.0; 4]);
+
+    /// `self + x * w`.
+    #[inline(always)]
+    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        let mut sum = self.0;
+        for k in 0..4 {
+            sum[k] += x[k] * w;
+        }
+        Lanes(sum)
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    fn xyz(self) -> [f32; 3] {
+        [self.0[0], self.0[1], self.0[2]]
+    }
 }
 
 #[cfg(test)]
