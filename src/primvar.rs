@@ -6,6 +6,27 @@ use crate::rules::{Stencil, Weights};
 use glam::Vec3;
 use std::borrow::Cow;
 
+/// The groups of a sink that multiplies each weight by the product of the open groups' scales
+/// as it comes (`self.scale`), rather than setting a sum aside: a row is wider than a register.
+macro_rules! scaled_groups {
+    () => {
+        /// The scale outside the group.
+        type Group = f32;
+
+        #[inline(always)]
+        fn begin_group(&mut self, scale: f32) -> f32 {
+            let outer = self.scale;
+            self.scale = outer * scale;
+            outer
+        }
+
+        #[inline(always)]
+        fn end_group(&mut self, outer: f32) {
+            self.scale = outer;
+        }
+    };
+}
+
 /// Sums weighted positions (or any three floats per vertex): the parent level's `points` by
 /// vertex, corners through `he_from`, and the child level's `face_points` by cell.
 pub struct PointSum<'a> {
@@ -146,20 +167,7 @@ impl Weights for RowSum<'_> {
         Self::add(&mut self.sum, row, weight * self.scale);
     }
 
-    /// The scale outside the group.
-    type Group = f32;
-
-    #[inline]
-    fn begin_group(&mut self, scale: f32) -> f32 {
-        let outer = self.scale;
-        self.scale = outer * scale;
-        outer
-    }
-
-    #[inline]
-    fn end_group(&mut self, outer: f32) {
-        self.scale = outer;
-    }
+    scaled_groups!();
 }
 
 /// The widest row a [`FVarSum`] sums (face-varying channels are grouped up to it; no channel
@@ -238,20 +246,7 @@ impl Weights for FVarSum<'_> {
         self.add_row(self.face_values, c as usize, weight);
     }
 
-    /// The scale outside the group.
-    type Group = f32;
-
-    #[inline(always)]
-    fn begin_group(&mut self, scale: f32) -> f32 {
-        let outer = self.scale;
-        self.scale = outer * scale;
-        outer
-    }
-
-    #[inline(always)]
-    fn end_group(&mut self, outer: f32) {
-        self.scale = outer;
-    }
+    scaled_groups!();
 }
 
 /// Any number of vertex-numbered channels (`width` floats per vertex each) refined together:
@@ -304,20 +299,7 @@ impl Weights for JointSum<'_> {
         self.entries.push((c | FACE_POINT, weight * self.scale));
     }
 
-    /// The scale outside the group.
-    type Group = f32;
-
-    #[inline(always)]
-    fn begin_group(&mut self, scale: f32) -> f32 {
-        let outer = self.scale;
-        self.scale = outer * scale;
-        outer
-    }
-
-    #[inline(always)]
-    fn end_group(&mut self, outer: f32) {
-        self.scale = outer;
-    }
+    scaled_groups!();
 }
 
 /// The sum of `entries` over rows of `W` floats (`rows` by vertex, `face_rows` by face point),
