@@ -161,6 +161,48 @@ fn affine_channels_follow_a_list_of_schemes() {
     }
 }
 
+/// A face-varying channel beside them changes nothing in the vertex-varying channels: with one,
+/// the primal schemes refine both in one walk of the rules (`primvar::Joint`), which must sum
+/// the same weights in the same order, bit for bit, through creases and holes too.
+#[test]
+fn a_face_varying_channel_leaves_the_vertex_varying_ones_alone() {
+    let mut checked = 0;
+    for (name, mesh) in sample_meshes() {
+        // One value per face corner, none shared: every edge is a seam.
+        let corners = mesh.indices.len();
+        let values: Vec<f32> = (0..2 * corners).map(|i| (i % 11) as f32 * 0.125).collect();
+        let uv = Attribute::face_varying("uv", 2, values, (0..corners as u32).collect());
+        // And one that follows the vertices: no seam at all.
+        let smooth =
+            Attribute::face_varying("w", 1, vec![0.5; mesh.num_vertices()], mesh.indices.clone());
+        let mut tags = Tags::default();
+        if mesh.face_sizes.len() > 2 {
+            tags.holes = vec![1];
+        }
+        let [a, b] = [mesh.indices[0], mesh.indices[1]];
+        tags.creases = vec![Crease { vertices: [a, b], sharpness: 1.5 }];
+        for scheme in [Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear] {
+            let Some(mesh) = input_for(scheme, &mesh) else { continue };
+            for (levels, tags) in [(1, Tags::default()), (2, tags.clone())] {
+                let options = Options::new(scheme, levels);
+                let what = format!("{name} {scheme} L{levels}");
+                let alone = channels(&mesh);
+                let (_, want) = subdivide_with_attributes(&mesh, &alone, &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                let mut beside = alone.clone();
+                beside.extend([uv.clone(), smooth.clone()]);
+                let (_, got) = subdivide_with_attributes(&mesh, &beside, &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(&got[..3], &want[..], "{what}");
+                // The seamless channel keeps its constant.
+                assert!(got[4].values.iter().all(|&x| x == 0.5), "{what}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 20, "{checked}");
+}
+
 /// Zero levels give the channels back unchanged; no channel gives no channel.
 #[test]
 fn zero_levels_and_no_channels() {
