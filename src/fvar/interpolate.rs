@@ -119,7 +119,8 @@ pub fn interpolate<F: ValueRules>(
     let (head, tail) = values.split_at_mut(edge_base * width);
     let (vertex_values, joint_faces) = head.split_at_mut(nv * width);
     let face_values = if near.is_some() { &*joint_faces } else { &own_faces[..] };
-    let mut out = Targets { vertex_values, tail, edge_base, width };
+    let spare = vec![0.0; width];
+    let mut out = Targets { vertex_values, tail, edge_base, width, spare };
     let mut sum = FVarSum::new(&parent.values, width, &parent.corner_values, face_values);
     let midpoint = |out: &mut [f32], a: u32, b: u32| {
         for ((o, &x), &y) in out.iter_mut().zip(row(a)).zip(row(b)) {
@@ -212,18 +213,23 @@ struct Targets<'o> {
     tail: &'o mut [f32],
     edge_base: usize,
     width: usize,
+    /// What a face point's slot would get: nothing writes one (they are all set before), but a
+    /// wrong index must not panic.
+    spare: Vec<f32>,
 }
 
 impl Targets<'_> {
     #[inline(always)]
     fn at(&mut self, i: u32) -> &mut [f32] {
         let (i, width) = (i as usize, self.width);
-        if i < self.edge_base {
-            &mut self.vertex_values[i * width..(i + 1) * width]
+        let (target, at) = if i >= self.edge_base {
+            (&mut *self.tail, i - self.edge_base)
+        } else if (i + 1) * width <= self.vertex_values.len() {
+            (&mut *self.vertex_values, i)
         } else {
-            let i = i - self.edge_base;
-            &mut self.tail[i * width..(i + 1) * width]
-        }
+            (&mut self.spare[..], 0)
+        };
+        &mut target[at * width..(at + 1) * width]
     }
 }
 
