@@ -280,7 +280,8 @@ pub struct JointSum<'a> {
     scale: f32,
 }
 
-/// Marks a [`JointSum`] entry that reads a face point.
+/// Marks a [`JointSum`] entry that reads a face point (the memory guards keep vertex and cell
+/// counts far below 2^31).
 const FACE_POINT: u32 = 1 << 31;
 
 impl Weights for JointSum<'_> {
@@ -490,7 +491,7 @@ pub trait Primvar: Sized {
     /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;
     /// These values as one vertex-numbered channel, when they are plain floats (so that a host
-    /// may refine them in the walk of the rules that refines the positions, see [`Joint`]).
+    /// may refine them in one walk of the rules with other such channels, see [`Joint`]).
     fn as_channel(&self) -> Option<Channel<'_>> {
         None
     }
