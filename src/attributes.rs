@@ -176,28 +176,26 @@ pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows, RowLayout) {
     if width == 0 {
         return (Rows::default(), layout);
     }
-    let members = layout.channels.iter().map(|&(i, _, size, column)| (i, size, column));
-    let values = interleave(attributes, members, vertices, width);
+    let values = interleave(attributes, &layout.channels, vertices, width);
     (Rows { width, values }, layout)
 }
 
-/// `count` rows of `width` floats, with the values of each member `(attribute index, item
-/// size, first column)` side by side. A lone member is copied as it is (one memcpy, not one
+/// `count` rows of `width` floats, with the values of each member `(attribute index, name,
+/// item size, first column)` side by side. A lone member is copied as it is (one memcpy, not one
 /// per row).
 fn interleave(
     attributes: &[Attribute],
-    members: impl ExactSizeIterator<Item = (usize, usize, usize)>,
+    members: &[(usize, String, usize, usize)],
     count: usize,
     width: usize,
 ) -> Vec<f32> {
-    let lone = members.len() == 1;
-    let mut values = Vec::new();
-    for (i, size, column) in members {
+    if let [(i, _, size, _)] = *members {
         let source = &attributes[i].values;
-        if lone {
-            return source[..(count * size).min(source.len())].to_vec();
-        }
-        values.resize(count * width, 0.0);
+        return source[..(count * size).min(source.len())].to_vec();
+    }
+    let mut values = vec![0.0; count * width];
+    for &(i, _, size, column) in members {
+        let source = &attributes[i].values;
         for (row, value) in values.chunks_exact_mut(width).zip(source.chunks_exact(size)) {
             row[column..column + size].copy_from_slice(value);
         }
@@ -262,7 +260,6 @@ pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLay
         .map(|(members, indices)| {
             let width: usize = members.iter().map(|m| m.2).sum();
             let count = members.iter().map(|m| attributes[m.0].len()).min().unwrap_or(0);
-            let members = members.iter().map(|&(i, _, size, column)| (i, size, column));
             let values = interleave(attributes, members, count, width);
             FVarChannel::new(width, values, indices.to_vec())
         })

@@ -839,7 +839,7 @@ impl<V: Primvar> Primal<'_, '_, V> {
     ) -> (Level<'a, V>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
         let (sharp, mode) = (&self.sharp, self.mode);
-        let children: Vec<_> =
+        let steps: Vec<_> =
             self.fvar.iter_mut().map(|c| c.begin(&mesh, split, sharp, mode)).collect();
         // One walk of the rules for the face-varying values that follow the surface and the
         // vertex-varying rows (see `Joint`); the positions keep a walk of their own, whose sum
@@ -862,10 +862,10 @@ impl<V: Primvar> Primal<'_, '_, V> {
         } else {
             (refine_rows::<S, R, V>(&mesh, rules, self.rows), Vec::new())
         };
-        fvar_values.resize_with(children.len(), || None);
+        fvar_values.resize_with(steps.len(), || None);
         let value_rules = PrimalRules::<S, R>::new(rules);
-        for ((channel, child), joint) in self.fvar.iter_mut().zip(children).zip(fvar_values) {
-            channel.finish(&mesh, split, &value_rules, child, linear, sharp, mode, joint);
+        for ((channel, step), joint) in self.fvar.iter_mut().zip(steps).zip(fvar_values) {
+            channel.finish(&mesh, split, &value_rules, step, linear, sharp, mode, joint);
         }
         let positions = S::points(&mesh, rules, &mesh.positions);
         let tags = self.sharp.tags;

@@ -27,7 +27,7 @@ import * as SkeletonUtils from 'three/addons/utils/SkeletonUtils.js';
 import { subdivideGeometryAsync } from 'subsurf/three';
 import { createWorker } from 'subsurf/worker';
 import { schemeNames, version } from 'subsurf';
-import { attachDropZone } from './drop.js';
+import { attachDropZone, showMessage } from './page.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -182,16 +182,7 @@ function frameModel() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Messages
-
-function showMessage(text, kind = '') {
-  const message = $('message');
-  message.textContent = text;
-  message.className = kind;
-  message.setAttribute('role', kind === 'error' ? 'alert' : 'status');
-  if (kind === 'error') root.dataset.error = text;
-  else delete root.dataset.error;
-}
+// The busy indicator
 
 function setBusy(text) {
   $('busy').hidden = !text;

@@ -54,7 +54,7 @@ import { OrbitCamera, attachCameraControls, boundsOf } from './camera.js';
 import { Renderer } from './renderer.js';
 import { edgeKey, pickEdge, projectVertices } from './picking.js';
 import { Animator, probeWebGpu } from './animation.js';
-import { attachDropZone } from './drop.js';
+import { attachDropZone, showMessage } from './page.js';
 
 const $ = (id) => document.getElementById(id);
 const root = document.documentElement;
@@ -198,15 +198,6 @@ function frameMesh() {
 
 // ---------------------------------------------------------------------------------------------
 // Messages and the busy indicator
-
-function showMessage(text, kind = '') {
-  const message = $('message');
-  message.textContent = text;
-  message.className = kind;
-  message.setAttribute('role', kind === 'error' ? 'alert' : 'status');
-  if (kind === 'error') root.dataset.error = text;
-  else delete root.dataset.error;
-}
 
 let busyTimer = null;
 let busyUpdate = null;

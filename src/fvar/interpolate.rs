@@ -60,7 +60,8 @@ impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
 /// interpolated linearly. `sharp` is the parent level's sharpness. `joint`, when given, holds
 /// the values numbered as the child's vertices as the surface's rules make them from the
 /// parent's vertex-numbered values (see [`crate::fvar::FVarChannel::vertex_values`]): they are
-/// right wherever no face around reads another value, so only the rest is computed here.
+/// right away from the cells `near_seams` ([`FVarLevel::cells_near_seams`] of `parent`), so
+/// only the rest is computed here.
 #[allow(clippy::too_many_arguments)]
 pub fn interpolate<F: ValueRules>(
     mesh: &HalfEdgeMesh,
@@ -70,6 +71,7 @@ pub fn interpolate<F: ValueRules>(
     child: &mut FVarLevel,
     linear: bool,
     sharp: &LevelSharpness,
+    near_seams: &[u32],
     joint: Option<Vec<f32>>,
 ) {
     let width = parent.width;
@@ -78,7 +80,7 @@ pub fn interpolate<F: ValueRules>(
     let edge_base = nv + face_points;
     // The mixed split's rules read the centroids of triangles too, which get no face point.
     let joint = joint.filter(|_| split != Split::Mixed && !linear);
-    let near = joint.is_some().then(|| NearSeams::new(mesh, parent));
+    let near = joint.is_some().then(|| NearSeams::new(mesh, near_seams));
     let mut values = joint.unwrap_or_default();
     values.resize(child.num_values() * width, 0.0);
     let row = |i: u32| &parent.values[i as usize * width..(i as usize + 1) * width];
@@ -98,7 +100,7 @@ pub fn interpolate<F: ValueRules>(
     let mut own_faces = Vec::new();
     match &near {
         Some(near) if split == Split::Quad => {
-            for &c in &near.cells {
+            for &c in near.cells {
                 let at = (nv + c as usize) * width;
                 centroid(&mut values[at..at + width], c as usize);
             }
@@ -233,35 +235,25 @@ impl Targets<'_> {
     }
 }
 
-/// The cells with a corner that sees a value other than its vertex's first (only next to
-/// seams and the values after them), and their vertices and edges: the rules of every other
-/// new value read vertex-numbered values only.
-struct NearSeams {
-    cells: Vec<u32>,
+/// The cells next to seams ([`FVarLevel::cells_near_seams`]) and their vertices and edges: the
+/// rules of every other new value read vertex-numbered values only.
+struct NearSeams<'c> {
+    cells: &'c [u32],
     vertices: Vec<bool>,
     edges: Vec<bool>,
 }
 
-impl NearSeams {
-    fn new(mesh: &HalfEdgeMesh, level: &FVarLevel) -> Self {
-        let mut near = NearSeams {
-            cells: Vec::new(),
-            vertices: vec![false; mesh.num_vertices()],
-            edges: vec![false; mesh.num_edges()],
-        };
-        for c in 0..mesh.num_cells() {
-            let range = mesh.cell_range(c);
-            let sees_other = |h: usize| level.corner_values[h] != mesh.he_from[h];
-            if !range.clone().any(sees_other) {
-                continue;
-            }
-            near.cells.push(c as u32);
-            for h in range {
-                near.vertices[mesh.he_from[h] as usize] = true;
-                near.edges[mesh.he_edge[h] as usize] = true;
+impl<'c> NearSeams<'c> {
+    fn new(mesh: &HalfEdgeMesh, cells: &'c [u32]) -> Self {
+        let mut vertices = vec![false; mesh.num_vertices()];
+        let mut edges = vec![false; mesh.num_edges()];
+        for &c in cells {
+            for h in mesh.cell_range(c as usize) {
+                vertices[mesh.he_from[h] as usize] = true;
+                edges[mesh.he_edge[h] as usize] = true;
             }
         }
-        near
+        NearSeams { cells, vertices, edges }
     }
 }
 

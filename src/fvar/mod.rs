@@ -132,6 +132,15 @@ pub struct FVarChannel {
     pub analysed: bool,
 }
 
+/// A channel's next level between [`FVarChannel::begin`] and [`FVarChannel::finish`]: its
+/// topology, and the parent's cells next to seams ([`FVarLevel::cells_near_seams`]), which both
+/// steps read.
+#[derive(Debug)]
+pub struct FVarStep {
+    child: FVarLevel,
+    near_seams: Vec<u32>,
+}
+
 impl FVarChannel {
     /// A channel of `width` floats per value, one index per face corner.
     pub fn new(width: usize, values: Vec<f32>, indices: Vec<u32>) -> Self {
@@ -150,8 +159,8 @@ impl FVarChannel {
         sharp: &LevelSharpness,
         mode: FVarLinear,
     ) {
-        let child = self.begin(mesh, split, sharp, mode);
-        self.finish(mesh, split, rules, child, linear, sharp, mode, None);
+        let step = self.begin(mesh, split, sharp, mode);
+        self.finish(mesh, split, rules, step, linear, sharp, mode, None);
     }
 
     /// True when the values that match the surface take the surface's own rules (see
@@ -167,7 +176,7 @@ impl FVarChannel {
         split: Split,
         sharp: &LevelSharpness,
         mode: FVarLinear,
-    ) -> FVarLevel {
+    ) -> FVarStep {
         let mode = ModeRules::new(mode);
         if !self.analysed {
             let given = std::mem::take(&mut self.level);
@@ -181,7 +190,9 @@ impl FVarChannel {
             );
             self.analysed = true;
         }
-        self.level.child_topology(mesh, split, sharp, mode)
+        let near_seams = self.level.cells_near_seams(mesh);
+        let child = self.level.child_topology(mesh, split, sharp, mode, &near_seams);
+        FVarStep { child, near_seams }
     }
 
     /// The values numbered as the vertices of `mesh` (each vertex's first value), as one
@@ -193,7 +204,7 @@ impl FVarChannel {
         Channel { width, values: Cow::Borrowed(&self.level.values[..end]) }
     }
 
-    /// The second step of [`FVarChannel::refine`]: the values of `child`. With `joint`, the
+    /// The second step of [`FVarChannel::refine`]: the values of `step`'s child. With `joint`, the
     /// values numbered as `child`'s vertices that the host refined from
     /// [`FVarChannel::vertex_values`] with the surface's rules: only the values near seams and
     /// the mismatched ones are computed here.
@@ -203,15 +214,16 @@ impl FVarChannel {
         mesh: &HalfEdgeMesh,
         split: Split,
         rules: &impl ValueRules,
-        mut child: FVarLevel,
+        step: FVarStep,
         linear: bool,
         sharp: &LevelSharpness,
         mode: FVarLinear,
         joint: Option<Vec<f32>>,
     ) {
         let linear = linear || ModeRules::new(mode).linear;
+        let FVarStep { mut child, near_seams } = step;
         let parent = &self.level;
-        interpolate(mesh, split, rules, parent, &mut child, linear, sharp, joint);
+        interpolate(mesh, split, rules, parent, &mut child, linear, sharp, &near_seams, joint);
         self.level = child;
     }
 

@@ -496,6 +496,19 @@ impl FVarLevel {
         self.corner_values[corner as usize]
     }
 
+    /// The cells next to a seam, in order: those with a corner that sees a value other than its
+    /// vertex's first, or with a seam edge. Every other cell's corners see their vertices
+    /// (numbered as the vertices), so its children and the rules that read it need no
+    /// face-varying care ([`FVarLevel::child_topology`], `interpolate`).
+    pub(crate) fn cells_near_seams(&self, mesh: &HalfEdgeMesh) -> Vec<u32> {
+        let near = |h: usize| {
+            self.corner_values[h] != mesh.he_from[h]
+                || self.edge_tag(mesh.he_edge[h]) & edge_tag::MISMATCH != 0
+        };
+        let cells = 0..mesh.num_cells() as u32;
+        cells.filter(|&c| mesh.cell_range(c as usize).any(near)).collect()
+    }
+
     /// The next level's topology (no values yet) after `split` of `mesh`: OpenSubdiv's
     /// `FVarRefinement::applyRefinement` for a uniform split.
     pub(crate) fn child_topology(
@@ -504,6 +517,7 @@ impl FVarLevel {
         split: Split,
         sharp: &LevelSharpness,
         mode: ModeRules,
+        near_seams: &[u32],
     ) -> FVarLevel {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         let (face_point_of, face_points) = split.face_points(mesh);
@@ -580,18 +594,13 @@ impl FVarLevel {
             next.value(cv, sides.iter().position(|&y| y == x).unwrap_or(0) as u32)
         };
         let mut corners = Vec::with_capacity(4 * mesh.num_half_edges());
-        // A cell whose corners see their vertices' first values and whose edges are no seams
-        // (all cells away from seams) has child corners that see the child vertices: the
-        // child faces' own indices.
-        let clean = |cell: &std::ops::Range<usize>| {
-            cell.clone().all(|h| {
-                self.corner_values[h] == mesh.he_from[h]
-                    && self.edge_tag(mesh.he_edge[h]) & edge_tag::MISMATCH == 0
-            })
-        };
+        // A cell away from seams has child corners that see the child vertices: the child
+        // faces' own indices.
+        let mut near = near_seams.iter().copied().peekable();
         for c in 0..mesh.num_cells() as u32 {
             let cell = mesh.cell_range(c as usize);
-            if split == Split::Quad && clean(&cell) {
+            let is_near = near.next_if_eq(&c).is_some();
+            if split == Split::Quad && !is_near {
                 let face = (nv as u32) + face_point_of[c as usize];
                 let edge_point = |h: usize| edge_base as u32 + mesh.he_edge[h];
                 let last = cell.end - 1;

@@ -39,8 +39,9 @@ const PAGE = `<!doctype html><meta charset="utf-8"><title>subsurf glTF model tes
 
 const { check, finish } = checks('gltf_model e2e');
 const version = JSON.parse(readFileSync(join(assets, 'package.json'), 'utf8')).version;
-// / is the page, /pkg/ the built package, /three/ three, /assets/ the model package.
-const server = await serveStatic({ pages: { '/': PAGE }, routes: { '/pkg/': pkg, '/three/': three, '/assets/': assets } });
+// / is the page, /pkg/ the built package, /three/ three, /assets/ the model package, /tests/
+// the shared edge counts.
+const server = await serveStatic({ pages: { '/': PAGE }, routes: { '/pkg/': pkg, '/three/': three, '/assets/': assets, '/tests/': join(root, 'tests', 'js') } });
 const browser = await launchChromium({ args: SWIFTSHADER_WEBGL });
 try {
   const page = await browser.newPage();
@@ -58,45 +59,7 @@ try {
     const gltf = await new GLTFLoader().setDRACOLoader(draco).loadAsync(url);
     draco.dispose();
 
-    /** Boundary edges, boundary loops (welded by position bits), or a string saying what is wrong. */
-    const edges = (geometry) => {
-      const p = geometry.getAttribute('position');
-      const f32 = new Float32Array(3), bits = new Uint32Array(f32.buffer);
-      const ids = new Map();
-      const id = (v) => {
-        f32[0] = p.getX(v) + 0; f32[1] = p.getY(v) + 0; f32[2] = p.getZ(v) + 0;
-        const k = `${bits[0]},${bits[1]},${bits[2]}`;
-        if (!ids.has(k)) ids.set(k, ids.size);
-        return ids.get(k);
-      };
-      const directed = new Set(), next = new Map();
-      const index = geometry.index.array;
-      for (let t = 0; t < index.length; t += 3) {
-        for (let j = 0; j < 3; j++) {
-          const a = id(index[t + j]), b = id(index[t + ((j + 1) % 3)]);
-          if (a === b) return `triangle ${t / 3} degenerate`;
-          if (directed.has(`${a},${b}`)) return `edge ${a},${b} used twice one way`;
-          directed.add(`${a},${b}`);
-        }
-      }
-      for (const k of directed) {
-        const [a, b] = k.split(',');
-        if (directed.has(`${b},${a}`)) continue;
-        if (next.has(a)) return 'a non-manifold boundary vertex';
-        next.set(a, b);
-      }
-      let loops = 0;
-      const seen = new Set();
-      for (const start of next.keys()) {
-        if (seen.has(start)) continue;
-        loops++;
-        for (let v = start; !seen.has(v); v = next.get(v)) {
-          if (!next.has(v)) return 'an open boundary';
-          seen.add(v);
-        }
-      }
-      return { boundary: next.size, loops };
-    };
+    const { edgeCounts: edges } = await import('/tests/edges.mjs');
     const uvBox = (geometry) => {
       const uv = geometry.getAttribute('uv');
       const box = [Infinity, Infinity, -Infinity, -Infinity];

@@ -41,6 +41,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { checks, installPackage, root, triangulated } from './common.mjs';
+import { edgeCounts } from './edges.mjs';
 
 const fixtures = join(root, 'tests', 'fixtures', 'gltf');
 const TOLERANCE = 1e-5;
@@ -255,55 +256,15 @@ function assertSameFaces(geometry, reference, what) {
   tally[against].comparisons++;
 }
 
-/**
- * Edges of a triangle geometry welded by position bits: [boundary edges, boundary loops,
- * interior edges]; asserts that every edge is used once each way or once (boundary), never more.
- */
-function edgeCounts(geometry, what) {
-  const p = geometry.getAttribute('position');
-  const ids = new Map();
-  const f32 = new Float32Array(3), bits = new Uint32Array(f32.buffer);
-  const id = (v) => {
-    f32[0] = p.getX(v) + 0; f32[1] = p.getY(v) + 0; f32[2] = p.getZ(v) + 0; // + 0: -0 as 0
-    const k = `${bits[0]},${bits[1]},${bits[2]}`;
-    if (!ids.has(k)) ids.set(k, ids.size);
-    return ids.get(k);
-  };
-  const directed = new Map();
-  const index = geometry.index.array;
-  for (let t = 0; t < index.length; t += 3) {
-    for (let j = 0; j < 3; j++) {
-      const a = id(index[t + j]), b = id(index[t + ((j + 1) % 3)]);
-      assert.notEqual(a, b, `${what}: triangle ${t / 3} is degenerate by position`);
-      const k = `${a},${b}`;
-      assert.ok(!directed.has(k), `${what}: edge ${k} is used twice the same way`);
-      directed.set(k, [a, b]);
-    }
-  }
-  let interior = 0;
-  const next = new Map(); // boundary: from -> to
-  for (const [k, [a, b]] of directed) {
-    if (directed.has(`${b},${a}`)) interior++;
-    else {
-      assert.ok(!next.has(a), `${what}: two boundary edges leave one vertex (a non-manifold boundary)`);
-      next.set(a, b);
-    }
-  }
-  let loops = 0;
-  const seen = new Set();
-  for (const start of next.keys()) {
-    if (seen.has(start)) continue;
-    loops++;
-    for (let v = start; !seen.has(v); v = next.get(v)) {
-      assert.ok(next.has(v), `${what}: a boundary that does not close`);
-      seen.add(v);
-    }
-  }
-  return { boundary: next.size, loops, interior: interior / 2 };
+/** `edgeCounts` of `geometry`, asserted to be counts (no edge used twice one way, boundaries closed). */
+function countEdges(geometry, what) {
+  const counts = edgeCounts(geometry);
+  assert.equal(typeof counts, 'object', `${what}: ${counts}`);
+  return counts;
 }
 
 function assertWatertight(input, output, levels, what) {
-  const a = edgeCounts(input, `${what} (input)`), b = edgeCounts(output, what);
+  const a = countEdges(input, `${what} (input)`), b = countEdges(output, what);
   assert.equal(b.boundary, a.boundary * 2 ** levels, `${what}: output boundary edges (input has ${a.boundary})`);
   assert.equal(b.loops, a.loops, `${what}: boundary loops`);
   return a.boundary === 0;

@@ -1,4 +1,5 @@
-// Drag and drop of files anywhere on a page, shared by the demo's two pages.
+// What the demo's two pages share: the message line, and drag and drop of files anywhere on the
+// page.
 
 /**
  * Shows `dropZone` while files are dragged over the window and hands the dropped FileList to
@@ -26,4 +27,18 @@ export function attachDropZone(dropZone, onFiles) {
     dropZone.hidden = true;
     onFiles(event.dataTransfer?.files);
   });
+}
+
+/**
+ * Shows `text` in the page's `#message` line; `kind` 'error' makes it an alert and mirrors it in
+ * `data-error` on the root element (the end-to-end tests read it), 'notice' styles it apart.
+ */
+export function showMessage(text, kind = '') {
+  const message = document.getElementById('message');
+  message.textContent = text;
+  message.className = kind;
+  message.setAttribute('role', kind === 'error' ? 'alert' : 'status');
+  const root = document.documentElement;
+  if (kind === 'error') root.dataset.error = text;
+  else delete root.dataset.error;
 }
