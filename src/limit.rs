@@ -67,7 +67,7 @@ pub fn evaluate<V: Primvar>(
         let first = sum.eval(|w| {
             rules.tangents(&hood, w, &mut second);
         });
-        let second = second.sum.to_array();
+        let second = second.sum;
         frame.tangents[0].extend(first);
         frame.tangents[1].extend(second);
         frame.normals.extend(normal(first, second));

@@ -3,7 +3,6 @@
 
 use crate::mesh::HalfEdgeMesh;
 use crate::rules::{Stencil, Weights};
-use glam::Vec3;
 use std::borrow::Cow;
 
 /// The groups of a sink that multiplies each weight by the product of the open groups' scales
@@ -27,34 +26,46 @@ macro_rules! scaled_groups {
     };
 }
 
-/// Sums weighted positions (or any three floats per vertex): the parent level's `points` by
-/// vertex, corners through `he_from`, and the child level's `face_points` by cell.
-pub struct PointSum<'a> {
-    pub points: &'a [[f32; 3]],
+/// Sums weighted points of `W` floats (positions, or every vertex-numbered channel of a level
+/// packed side by side, see [`pack_points`]): the parent level's `points` by vertex, corners
+/// through `he_from`, and the child level's `face_points` by cell. The sum stays in registers;
+/// a group sets it aside and scales its own sum at the end, lane by lane, so that each lane sums
+/// exactly as it would alone (positions packed with other channels stay bit for bit those
+/// refined alone).
+pub struct PointSum<'a, const W: usize = 3> {
+    pub points: &'a [[f32; W]],
     pub he_from: &'a [u32],
-    pub face_points: &'a [[f32; 3]],
-    pub sum: Vec3,
+    pub face_points: &'a [[f32; W]],
+    pub sum: [f32; W],
 }
 
-impl<'a> PointSum<'a> {
+impl<'a, const W: usize> PointSum<'a, W> {
     #[inline(always)]
-    pub fn new(points: &'a [[f32; 3]], he_from: &'a [u32], face_points: &'a [[f32; 3]]) -> Self {
-        PointSum { points, he_from, face_points, sum: Vec3::ZERO }
+    pub fn new(points: &'a [[f32; W]], he_from: &'a [u32], face_points: &'a [[f32; W]]) -> Self {
+        PointSum { points, he_from, face_points, sum: [0.0; W] }
     }
 
     /// The point whose weights `rule` gives.
     #[inline(always)]
-    pub fn eval(&mut self, rule: impl FnOnce(&mut Self)) -> [f32; 3] {
-        self.sum = Vec3::ZERO;
+    pub fn eval(&mut self, rule: impl FnOnce(&mut Self)) -> [f32; W] {
+        self.sum = [0.0; W];
         rule(self);
-        self.sum.to_array()
+        self.sum
+    }
+
+    #[inline(always)]
+    fn add(&mut self, point: &[f32; W], weight: f32) {
+        for (s, &x) in self.sum.iter_mut().zip(point) {
+            *s += x * weight;
+        }
     }
 }
 
-impl Weights for PointSum<'_> {
+impl<const W: usize> Weights for PointSum<'_, W> {
     #[inline(always)]
     fn vertex(&mut self, v: u32, weight: f32) {
-        self.sum += Vec3::from_array(self.points[v as usize]) * weight;
+        let points = self.points;
+        self.add(&points[v as usize], weight);
     }
 
     #[inline(always)]
@@ -64,20 +75,23 @@ impl Weights for PointSum<'_> {
 
     #[inline(always)]
     fn face_point(&mut self, c: u32, weight: f32) {
-        self.sum += Vec3::from_array(self.face_points[c as usize]) * weight;
+        let face_points = self.face_points;
+        self.add(&face_points[c as usize], weight);
     }
 
     /// The sum before the group, and the group's scale.
-    type Group = (Vec3, f32);
+    type Group = ([f32; W], f32);
 
     #[inline(always)]
-    fn begin_group(&mut self, scale: f32) -> (Vec3, f32) {
-        (std::mem::replace(&mut self.sum, Vec3::ZERO), scale)
+    fn begin_group(&mut self, scale: f32) -> ([f32; W], f32) {
+        (std::mem::replace(&mut self.sum, [0.0; W]), scale)
     }
 
     #[inline(always)]
-    fn end_group(&mut self, (outer, scale): (Vec3, f32)) {
-        self.sum = outer + self.sum * scale;
+    fn end_group(&mut self, (outer, scale): ([f32; W], f32)) {
+        for (s, o) in self.sum.iter_mut().zip(outer) {
+            *s = o + *s * scale;
+        }
     }
 }
 
@@ -249,188 +263,88 @@ impl Weights for FVarSum<'_> {
     scaled_groups!();
 }
 
-/// Any number of vertex-numbered channels (`width` floats per vertex each) refined together:
-/// each new point's rule is walked once and its weights applied to every channel (the
-/// vertex-varying rows, and the face-varying values that follow the surface, see
-/// [`crate::fvar::FVarChannel::vertex_values`]). A parent borrows its data; a child owns it.
-#[derive(Clone, Debug, Default)]
-pub struct Joint<'p> {
-    pub channels: Vec<Channel<'p>>,
-}
-
-/// One vertex-numbered channel of a [`Joint`].
+/// One vertex-numbered channel: `width` floats per vertex (see [`pack_points`]).
 #[derive(Clone, Debug, Default)]
 pub struct Channel<'p> {
     pub width: usize,
     pub values: Cow<'p, [f32]>,
 }
 
-/// The sum of a [`Joint`]: the rule's sources and weights are recorded, then summed channel by
-/// channel, each in a loop of its own width whose sum stays in registers. (Summing every
-/// channel as the weights come, into a buffer of widths known only at run time, kept the sums
-/// in memory and cost more than walking the rule once per channel.)
-pub struct JointSum<'a> {
-    he_from: &'a [u32],
-    /// Each channel's width, parent values and the child level's face points.
-    channels: Vec<(usize, &'a [f32], &'a [f32])>,
-    /// The sources (a face point with [`FACE_POINT`] set) and weights, the scales of the open
-    /// groups applied.
-    entries: Vec<(u32, f32)>,
-    /// The product of the scales of the open groups.
-    scale: f32,
-}
+/// The widest packed point [`pack_points`] makes: positions and up to five more floats per
+/// vertex (a colour and a UV, or four skin weights). Wider levels walk the rules per kind.
+pub const MAX_PACKED: usize = 8;
 
-/// Marks a [`JointSum`] entry that reads a face point (the memory guards keep vertex and cell
-/// counts far below 2^31).
-const FACE_POINT: u32 = 1 << 31;
-
-impl Weights for JointSum<'_> {
-    #[inline(always)]
-    fn vertex(&mut self, v: u32, weight: f32) {
-        self.entries.push((v, weight * self.scale));
-    }
-
-    #[inline(always)]
-    fn corner(&mut self, h: u32, weight: f32) {
-        self.vertex(self.he_from[h as usize], weight);
-    }
-
-    #[inline(always)]
-    fn face_point(&mut self, c: u32, weight: f32) {
-        self.entries.push((c | FACE_POINT, weight * self.scale));
-    }
-
-    scaled_groups!();
-}
-
-/// The sum of `entries` over rows of `W` floats (`rows` by vertex, `face_rows` by face point),
-/// in the order the rule gave them (as [`RowSum`] sums).
-#[inline(always)]
-fn sum_entries<const W: usize>(
-    entries: &[(u32, f32)],
-    rows: &[f32],
-    face_rows: &[f32],
-) -> [f32; W] {
-    let mut sum = [0.0f32; W];
-    let sources = [rows, face_rows];
-    for &(i, weight) in entries {
-        // A select, not a branch: vertices and face points alternate in no set pattern.
-        let source = sources[(i >> 31) as usize];
-        let start = (i & !FACE_POINT) as usize * W;
-        if let Some(row) = source.get(start..).and_then(|r| r.first_chunk::<W>()) {
-            for k in 0..W {
-                sum[k] += row[k] * weight;
-            }
+/// `positions` and `channels` side by side, `W` floats per vertex (`W` the sum of their widths;
+/// a channel shorter than the positions reads as zeros), so that one walk of the rules refines
+/// them all with its sum in registers.
+pub fn pack_points<const W: usize>(
+    positions: &[[f32; 3]],
+    channels: &[Channel<'_>],
+) -> Vec<[f32; W]> {
+    let mut packed: Vec<[f32; W]> = positions
+        .iter()
+        .map(|p| {
+            let mut point = [0.0; W];
+            point[..3].copy_from_slice(p);
+            point
+        })
+        .collect();
+    let mut at = 3;
+    for channel in channels {
+        let values = &channel.values[..];
+        match channel.width {
+            1 => put::<W, 1>(&mut packed, values, at),
+            2 => put::<W, 2>(&mut packed, values, at),
+            3 => put::<W, 3>(&mut packed, values, at),
+            4 => put::<W, 4>(&mut packed, values, at),
+            _ => put::<W, 5>(&mut packed, values, at),
         }
+        at += channel.width;
     }
-    sum
+    packed
 }
 
-/// The row that `entries` sum over `channel` (width, parent rows, face rows), into `out`.
-fn sum_entries_into(
-    entries: &[(u32, f32)],
-    (width, rows, face_rows): (usize, &[f32], &[f32]),
-    out: &mut [f32],
-) {
-    match out {
-        [x] => [*x] = sum_entries::<1>(entries, rows, face_rows),
-        [x, y] => [*x, *y] = sum_entries::<2>(entries, rows, face_rows),
-        [x, y, z] => [*x, *y, *z] = sum_entries::<3>(entries, rows, face_rows),
-        [x, y, z, w] => [*x, *y, *z, *w] = sum_entries::<4>(entries, rows, face_rows),
-        _ => {
-            out.fill(0.0);
-            let sources = [rows, face_rows];
-            for &(i, weight) in entries {
-                let source = sources[(i >> 31) as usize];
-                let start = (i & !FACE_POINT) as usize * width;
-                if let Some(row) = source.get(start..start + width) {
-                    RowSum::add(out, row, weight);
-                }
-            }
+/// Positions, and channels of any widths, as [`unpack_points`] gives them back.
+pub type Unpacked = (Vec<[f32; 3]>, Vec<Vec<f32>>);
+
+/// The positions and the channels of `widths` that [`pack_points`] packed.
+pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> Unpacked {
+    let positions = column::<W, 3>(packed, 0);
+    let mut at = 3;
+    let channels = widths.iter().map(|&width| {
+        let values = match width {
+            1 => column::<W, 1>(packed, at).into_flattened(),
+            2 => column::<W, 2>(packed, at).into_flattened(),
+            3 => column::<W, 3>(packed, at).into_flattened(),
+            4 => column::<W, 4>(packed, at).into_flattened(),
+            _ => column::<W, 5>(packed, at).into_flattened(),
+        };
+        at += width;
+        values
+    });
+    (positions, channels.collect())
+}
+
+/// Writes the values of a channel of `N` floats into floats `at..at + N` of the packed points
+/// (loops of constant width: no copy call per point).
+fn put<const W: usize, const N: usize>(packed: &mut [[f32; W]], values: &[f32], at: usize) {
+    for (point, value) in packed.iter_mut().zip(values.chunks_exact(N)) {
+        if let Some(to) = point.get_mut(at..at + N) {
+            to.copy_from_slice(value);
         }
     }
 }
 
-impl Joint<'_> {
-    /// Appends the rows that `sum`'s entries give. (One copy for every host and rule set: the
-    /// walk is what they differ in.)
-    #[inline(never)]
-    fn push_sum(&mut self, sum: &JointSum<'_>) {
-        for (channel, &source) in self.channels.iter_mut().zip(&sum.channels) {
-            let values = channel.values.to_mut();
-            let (entries, (width, rows, faces)) = (&sum.entries[..], source);
-            match width {
-                1 => values.extend_from_slice(&sum_entries::<1>(entries, rows, faces)),
-                2 => values.extend_from_slice(&sum_entries::<2>(entries, rows, faces)),
-                3 => values.extend_from_slice(&sum_entries::<3>(entries, rows, faces)),
-                4 => values.extend_from_slice(&sum_entries::<4>(entries, rows, faces)),
-                _ => {
-                    let start = values.len();
-                    values.resize(start + width, 0.0);
-                    sum_entries_into(entries, source, &mut values[start..]);
-                }
-            }
+/// Floats `at..at + N` of every packed point.
+fn column<const W: usize, const N: usize>(packed: &[[f32; W]], at: usize) -> Vec<[f32; N]> {
+    let value = |point: &[f32; W]| {
+        let mut value = [0.0; N];
+        if let Some(from) = point.get(at..at + N) {
+            value.copy_from_slice(from);
         }
-    }
-}
-
-impl Primvar for Joint<'_> {
-    type Sum<'a>
-        = JointSum<'a>
-    where
-        Self: 'a;
-
-    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> JointSum<'a> {
-        let channels = self.channels.iter().enumerate().map(|(i, c)| {
-            let faces = face_points.and_then(|f| f.channels.get(i)).map_or(&[][..], |f| &f.values);
-            (c.width, &c.values[..], faces)
-        });
-        // Room for the points of a vertex of valence 30 without growing.
-        let entries = Vec::with_capacity(64);
-        JointSum { he_from, channels: channels.collect(), entries, scale: 1.0 }
-    }
-
-    fn with_capacity(&self, capacity: usize) -> Self {
-        let channels = self.channels.iter().map(|c| Channel {
-            width: c.width,
-            values: Cow::Owned(Vec::with_capacity(capacity * c.width)),
-        });
-        Joint { channels: channels.collect() }
-    }
-
-    #[inline(always)]
-    fn push<'a>(&mut self, sum: &mut JointSum<'a>, rule: impl FnOnce(&mut JointSum<'a>)) {
-        sum.entries.clear();
-        rule(sum);
-        self.push_sum(sum);
-    }
-
-    fn extend_from(&mut self, other: &Self) {
-        for (channel, more) in self.channels.iter_mut().zip(&other.channels) {
-            channel.values.to_mut().extend_from_slice(&more.values);
-        }
-    }
-
-    fn extend_zeroed(&mut self, count: usize) {
-        for channel in &mut self.channels {
-            let values = channel.values.to_mut();
-            values.resize(values.len() + count * channel.width, 0.0);
-        }
-    }
-
-    fn set<'a>(&mut self, i: usize, sum: &mut JointSum<'a>, rule: impl FnOnce(&mut JointSum<'a>)) {
-        sum.entries.clear();
-        rule(sum);
-        for (channel, &source) in self.channels.iter_mut().zip(&sum.channels) {
-            let width = channel.width;
-            let target = &mut channel.values.to_mut()[i * width..(i + 1) * width];
-            sum_entries_into(&sum.entries, source, target);
-        }
-    }
-
-    fn is_empty(&self) -> bool {
-        self.channels.iter().all(|c| c.values.is_empty())
-    }
+        value
+    };
+    packed.iter().map(value).collect()
 }
 
 /// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.
@@ -491,7 +405,7 @@ pub trait Primvar: Sized {
     /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;
     /// These values as one vertex-numbered channel, when they are plain floats (so that a host
-    /// may refine them in one walk of the rules with other such channels, see [`Joint`]).
+    /// may refine them in one walk of the rules with the positions, see [`pack_points`]).
     fn as_channel(&self) -> Option<Channel<'_>> {
         None
     }
@@ -523,11 +437,11 @@ pub trait Primvar: Sized {
     }
 }
 
-impl Primvar for Vec<[f32; 3]> {
-    type Sum<'a> = PointSum<'a>;
+impl<const W: usize> Primvar for Vec<[f32; W]> {
+    type Sum<'a> = PointSum<'a, W>;
 
     #[inline]
-    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> PointSum<'a> {
+    fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> PointSum<'a, W> {
         PointSum::new(self, he_from, face_points.map_or(&[], |f| f))
     }
 
@@ -536,7 +450,7 @@ impl Primvar for Vec<[f32; 3]> {
     }
 
     #[inline(always)]
-    fn push<'a>(&mut self, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
+    fn push<'a>(&mut self, sum: &mut PointSum<'a, W>, rule: impl FnOnce(&mut PointSum<'a, W>)) {
         self.push(sum.eval(rule));
     }
 
@@ -544,8 +458,8 @@ impl Primvar for Vec<[f32; 3]> {
     fn extend_with<'a>(
         &mut self,
         count: u32,
-        sum: &mut PointSum<'a>,
-        mut rule: impl FnMut(u32, &mut PointSum<'a>),
+        sum: &mut PointSum<'a, W>,
+        mut rule: impl FnMut(u32, &mut PointSum<'a, W>),
     ) {
         self.extend((0..count).map(|i| sum.eval(|w| rule(i, w))));
     }
@@ -555,15 +469,20 @@ impl Primvar for Vec<[f32; 3]> {
     }
 
     fn extend_zeroed(&mut self, count: usize) {
-        self.resize(self.len() + count, [0.0; 3]);
+        self.resize(self.len() + count, [0.0; W]);
     }
 
     fn is_empty(&self) -> bool {
-        <[[f32; 3]]>::is_empty(self)
+        <[[f32; W]]>::is_empty(self)
     }
 
     #[inline(always)]
-    fn set<'a>(&mut self, i: usize, sum: &mut PointSum<'a>, rule: impl FnOnce(&mut PointSum<'a>)) {
+    fn set<'a>(
+        &mut self,
+        i: usize,
+        sum: &mut PointSum<'a, W>,
+        rule: impl FnOnce(&mut PointSum<'a, W>),
+    ) {
         self[i] = sum.eval(rule);
     }
 }

@@ -14,7 +14,7 @@ use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{
     check_guards, check_guards_with, predict, predict_counts, AttributeSizes, Prediction,
 };
-use crate::primvar::{Joint, Primvar, Rows};
+use crate::primvar::{pack_points, unpack_points, Channel, Primvar, Rows, Unpacked, MAX_PACKED};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
@@ -807,6 +807,25 @@ fn refine_rows<S: PrimalSplit<R>, R, V: Primvar>(mesh: &HalfEdgeMesh, rules: &R,
     }
 }
 
+/// `mesh`'s positions and `channels` refined in one walk of the rules, packed (see
+/// [`pack_points`]; every width up to [`MAX_PACKED`] takes the widest, one instance of the walk
+/// per host: the lanes left over cost next to nothing); `None` when there is no channel or they
+/// pass [`MAX_PACKED`] floats.
+fn refine_packed<S: PrimalSplit<R>, R>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    channels: &[Channel<'_>],
+) -> Option<Unpacked> {
+    let width = 3 + channels.iter().map(|c| c.width).sum::<usize>();
+    if channels.is_empty() || width > MAX_PACKED {
+        return None;
+    }
+    let parent = pack_points::<MAX_PACKED>(&mesh.positions, channels);
+    let child = S::points(mesh, rules, &parent);
+    let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
+    Some(unpack_points(&child, &widths))
+}
+
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
 /// positions with the parent mesh (the faces are implicit, see [`Refined`]), or a mesh built by
 /// index arithmetic where a host can do that.
@@ -841,33 +860,43 @@ impl<V: Primvar> Primal<'_, '_, V> {
         let (sharp, mode) = (&self.sharp, self.mode);
         let steps: Vec<_> =
             self.fvar.iter_mut().map(|c| c.begin(&mesh, split, sharp, mode)).collect();
-        // One walk of the rules for the face-varying values that follow the surface and the
-        // vertex-varying rows (see `Joint`); the positions keep a walk of their own, whose sum
-        // stays in registers. Rows alone keep theirs too: summed as the weights come, they
-        // cost less than recorded and summed after (wasm, a colour on the 1M-quad torus).
+        // The vertex-varying rows and the face-varying values that follow the surface (their
+        // values numbered as vertices) take the surface's weights: one walk of the rules refines
+        // them with the positions, packed side by side with the sum in registers, when that fits
+        // in `MAX_PACKED` floats; wider, each kind walks the rules on its own.
         let fvar_joint = FVarChannel::follows_surface(linear, mode) && !self.fvar.is_empty();
-        let rows_channel = self.rows.as_channel().filter(|_| fvar_joint);
-        let (rows, mut fvar_values) = if fvar_joint {
-            let has_rows = rows_channel.is_some();
-            let mut channels: Vec<_> = rows_channel.into_iter().collect();
-            if fvar_joint {
-                channels.extend(self.fvar.iter().map(|c| c.vertex_values(&mesh)));
-            }
-            let child = S::points(&mesh, rules, &Joint { channels });
-            let mut channels = child.channels.into_iter().map(|c| c.values.into_owned());
-            let rows = has_rows.then(|| channels.next()).flatten();
-            let rows = rows.and_then(|values| self.rows.with_channel(values));
-            let rows = rows.unwrap_or_else(|| refine_rows::<S, R, V>(&mesh, rules, self.rows));
-            (rows, channels.map(Some).collect())
-        } else {
-            (refine_rows::<S, R, V>(&mesh, rules, self.rows), Vec::new())
-        };
+        let mut channels: Vec<_> = self.rows.as_channel().into_iter().collect();
+        let has_rows = !channels.is_empty();
+        if fvar_joint {
+            channels.extend(self.fvar.iter().map(|c| c.vertex_values(&mesh)));
+        }
+        let (positions, rows, mut fvar_values) =
+            match refine_packed::<S, R>(&mesh, rules, &channels) {
+                Some((positions, refined)) => {
+                    let mut refined = refined.into_iter();
+                    let rows = has_rows.then(|| refined.next()).flatten();
+                    let rows = rows.and_then(|values| self.rows.with_channel(values));
+                    let rows =
+                        rows.unwrap_or_else(|| refine_rows::<S, R, V>(&mesh, rules, self.rows));
+                    (positions, rows, refined.map(Some).collect())
+                }
+                None => {
+                    let fvar_values: Vec<_> = channels[usize::from(has_rows)..]
+                        .iter()
+                        .map(|c| {
+                            let values = Rows { width: c.width, values: c.values.to_vec() };
+                            Some(refine_rows::<S, R, Rows>(&mesh, rules, &values).values)
+                        })
+                        .collect();
+                    let rows = refine_rows::<S, R, V>(&mesh, rules, self.rows);
+                    (S::points(&mesh, rules, &mesh.positions), rows, fvar_values)
+                }
+            };
         fvar_values.resize_with(steps.len(), || None);
         let value_rules = PrimalRules::<S, R>::new(rules);
         for ((channel, step), joint) in self.fvar.iter_mut().zip(steps).zip(fvar_values) {
             channel.finish(&mesh, split, &value_rules, step, linear, sharp, mode, joint);
         }
-        let positions = S::points(&mesh, rules, &mesh.positions);
         let tags = self.sharp.tags;
         if !self.last {
             let child = S::child_mesh(&mesh, positions);

@@ -161,9 +161,9 @@ fn affine_channels_follow_a_list_of_schemes() {
     }
 }
 
-/// A face-varying channel beside them changes nothing in the vertex-varying channels: with one,
-/// the primal schemes refine both in one walk of the rules (`primvar::Joint`), which must sum
-/// the same weights in the same order, bit for bit, through creases and holes too.
+/// A face-varying channel beside them changes nothing in the vertex-varying channels, bit for
+/// bit, through creases and holes too. (These channels are wider than one packed walk with the
+/// positions, `primvar::MAX_PACKED`: each kind walks the rules on its own.)
 #[test]
 fn a_face_varying_channel_leaves_the_vertex_varying_ones_alone() {
     let mut checked = 0;
@@ -196,6 +196,56 @@ fn a_face_varying_channel_leaves_the_vertex_varying_ones_alone() {
                 assert_eq!(&got[..3], &want[..], "{what}");
                 // The seamless channel keeps its constant.
                 assert!(got[4].values.iter().all(|&x| x == 0.5), "{what}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 20, "{checked}");
+}
+
+/// Narrow channels are refined packed beside the positions in one walk of the rules
+/// (`primvar::pack_points`): every float sums as it would alone, so the positions are bit for bit
+/// those of a call without channels, a colour is the same with or without a UV beside it, and
+/// an affine colour stays the same function of the refined positions. Through creases, holes and
+/// seams on every edge.
+#[test]
+fn packed_channels_sum_as_they_would_alone() {
+    let mut checked = 0;
+    for (name, mesh) in sample_meshes() {
+        let colour: Vec<f32> =
+            mesh.positions.chunks_exact(3).flat_map(|p| affine4(p)[..3].to_vec()).collect();
+        let colour = Attribute::vertex("colour", 3, colour);
+        let corners = mesh.indices.len();
+        let values: Vec<f32> = (0..2 * corners).map(|i| (i % 13) as f32 * 0.0625).collect();
+        let uv = Attribute::face_varying("uv", 2, values, (0..corners as u32).collect());
+        let mut tags = Tags::default();
+        if mesh.face_sizes.len() > 2 {
+            tags.holes = vec![1];
+        }
+        let [a, b] = [mesh.indices[0], mesh.indices[1]];
+        tags.creases = vec![Crease { vertices: [a, b], sharpness: 2.5 }];
+        for scheme in [Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear] {
+            let Some(mesh) = input_for(scheme, &mesh) else { continue };
+            for (levels, tags) in [(1, Tags::default()), (2, tags.clone())] {
+                let options = Options::new(scheme, levels);
+                let what = format!("{name} {scheme} L{levels}");
+                let plain = subdivide_with_tags(&mesh, &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                let both = [colour.clone(), uv.clone()];
+                let (out, got) = subdivide_with_attributes(&mesh, &both, &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(out.positions, plain.positions, "{what}: positions");
+                let (_, alone) = subdivide_with_attributes(&mesh, &both[..1], &options, &tags)
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(got[0].values, alone[0].values, "{what}: colour");
+                let scale = out.positions.iter().fold(1.0f32, |m, x| m.max(x.abs()));
+                let points = out.positions.chunks_exact(3);
+                for (v, (p, c)) in points.zip(got[0].values.chunks_exact(3)).enumerate() {
+                    for (k, (got, want)) in c.iter().zip(affine4(p)).enumerate() {
+                        let close = (got - want).abs() <= 8e-5 * scale;
+                        assert!(close, "{what}: vertex {v} colour[{k}] {got} vs {want}");
+                    }
+                }
                 checked += 1;
             }
         }
