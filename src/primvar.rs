@@ -307,8 +307,19 @@ pub fn pack_points<const W: usize>(
 /// Positions, and channels of any widths, as [`unpack_points`] gives them back.
 pub type Unpacked = (Vec<[f32; 3]>, Vec<Vec<f32>>);
 
-/// The positions and the channels of `widths` that [`pack_points`] packed.
+/// The positions and the channels of `widths` that [`pack_points`] packed. One or two channels
+/// (a colour, a UV, both) come out in one pass over the packed points.
 pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> Unpacked {
+    macro_rules! one_pass {
+        ($($a:literal $b:literal),*) => {
+            match widths {
+                $([$a] if $b == 0 => return split::<W, $a, $b>(packed, 1),
+                  [$a, $b] => return split::<W, $a, $b>(packed, 2),)*
+                _ => {}
+            }
+        };
+    }
+    one_pass!(1 0, 2 0, 3 0, 4 0, 5 0, 1 1, 1 2, 1 3, 1 4, 2 1, 2 2, 2 3, 3 1, 3 2, 4 1);
     let positions = column::<W, 3>(packed, 0);
     let mut at = 3;
     let channels = widths.iter().map(|&width| {
@@ -323,6 +334,30 @@ pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> U
         values
     });
     (positions, channels.collect())
+}
+
+/// The positions and `count` channels of `A` and `B` floats, in one pass.
+fn split<const W: usize, const A: usize, const B: usize>(
+    packed: &[[f32; W]],
+    count: usize,
+) -> Unpacked {
+    let n = packed.len();
+    let mut positions = Vec::with_capacity(n);
+    let mut first: Vec<[f32; A]> = Vec::with_capacity(n);
+    let mut second: Vec<[f32; B]> = Vec::with_capacity(n);
+    for point in packed {
+        positions.push(take::<W, 3>(point, 0));
+        first.push(take(point, 3));
+        second.push(take(point, 3 + A));
+    }
+    let channels = [first.into_flattened(), second.into_flattened()];
+    (positions, channels.into_iter().take(count).collect())
+}
+
+/// Floats `at..at + N` of a packed point (zeros past its end).
+#[inline(always)]
+fn take<const W: usize, const N: usize>(point: &[f32; W], at: usize) -> [f32; N] {
+    std::array::from_fn(|k| point.get(at + k).copied().unwrap_or(0.0))
 }
 
 /// Writes the values of a channel of `N` floats into floats `at..at + N` of the packed points
