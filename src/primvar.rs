@@ -274,21 +274,36 @@ pub struct Channel<'p> {
 /// vertex (a colour and a UV, or four skin weights). Wider levels walk the rules per kind.
 pub const MAX_PACKED: usize = 8;
 
+/// Calls `$f::<W, A, B>($args)` for the layout of one channel of `A` floats (`B` = 0) or two of
+/// `A` and `B` that `$widths` lists, when it fits beside the positions in [`MAX_PACKED`] floats
+/// (the common layouts: a colour, a UV, both, skin weights); `None` for any other.
+macro_rules! by_layout {
+    ($widths:expr, $f:ident $args:tt) => {
+        by_layout!(@ $widths, $f $args;
+            1 0, 2 0, 3 0, 4 0, 5 0, 1 1, 1 2, 1 3, 1 4, 2 1, 2 2, 2 3, 3 1, 3 2, 4 1)
+    };
+    (@ $widths:expr, $f:ident $args:tt; $($a:literal $b:literal),*) => {
+        match $widths {
+            $([$a] if $b == 0 => Some($f::<W, $a, $b> $args),
+              [$a, $b] => Some($f::<W, $a, $b> $args),)*
+            _ => None,
+        }
+    };
+}
+
 /// `positions` and `channels` side by side, `W` floats per vertex (`W` the sum of their widths;
 /// a channel shorter than the positions reads as zeros), so that one walk of the rules refines
-/// them all with its sum in registers.
+/// them all with its sum in registers. One or two channels go in one pass.
 pub fn pack_points<const W: usize>(
     positions: &[[f32; 3]],
     channels: &[Channel<'_>],
 ) -> Vec<[f32; W]> {
-    let mut packed: Vec<[f32; W]> = positions
-        .iter()
-        .map(|p| {
-            let mut point = [0.0; W];
-            point[..3].copy_from_slice(p);
-            point
-        })
-        .collect();
+    let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
+    let values = |k: usize| channels.get(k).map_or(&[][..], |c| &c.values[..]);
+    if let Some(packed) = by_layout!(&widths[..], join(positions, values(0), values(1))) {
+        return packed;
+    }
+    let mut packed: Vec<[f32; W]> = join::<W, 0, 0>(positions, &[], &[]);
     let mut at = 3;
     for channel in channels {
         let values = &channel.values[..];
@@ -308,18 +323,11 @@ pub fn pack_points<const W: usize>(
 pub type Unpacked = (Vec<[f32; 3]>, Vec<Vec<f32>>);
 
 /// The positions and the channels of `widths` that [`pack_points`] packed. One or two channels
-/// (a colour, a UV, both) come out in one pass over the packed points.
+/// come out in one pass over the packed points.
 pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> Unpacked {
-    macro_rules! one_pass {
-        ($($a:literal $b:literal),*) => {
-            match widths {
-                $([$a] if $b == 0 => return split::<W, $a, $b>(packed, 1),
-                  [$a, $b] => return split::<W, $a, $b>(packed, 2),)*
-                _ => {}
-            }
-        };
+    if let Some(unpacked) = by_layout!(widths, split(packed, widths.len())) {
+        return unpacked;
     }
-    one_pass!(1 0, 2 0, 3 0, 4 0, 5 0, 1 1, 1 2, 1 3, 1 4, 2 1, 2 2, 2 3, 3 1, 3 2, 4 1);
     let positions = column::<W, 3>(packed, 0);
     let mut at = 3;
     let channels = widths.iter().map(|&width| {
@@ -336,19 +344,61 @@ pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> U
     (positions, channels.collect())
 }
 
+/// Writes the values of a channel of `N` floats into floats `at..at + N` of the packed points
+/// (loops of constant width: no copy call per point).
+fn put<const W: usize, const N: usize>(packed: &mut [[f32; W]], values: &[f32], at: usize) {
+    for (point, value) in packed.iter_mut().zip(values.chunks_exact(N)) {
+        if let Some(to) = point.get_mut(at..at + N) {
+            to.copy_from_slice(value);
+        }
+    }
+}
+
+/// The packed points of `positions` with channels of `A` and `B` floats, in one pass.
+fn join<const W: usize, const A: usize, const B: usize>(
+    positions: &[[f32; 3]],
+    first: &[f32],
+    second: &[f32],
+) -> Vec<[f32; W]> {
+    let point = |(i, p): (usize, &[f32; 3])| {
+        let mut point = [0.0; W];
+        point[..3].copy_from_slice(p);
+        if let (Some(to), Some(from)) = (point.get_mut(3..3 + A), first.get(i * A..(i + 1) * A)) {
+            to.copy_from_slice(from);
+        }
+        let to = point.get_mut(3 + A..3 + A + B);
+        if let (Some(to), Some(from)) = (to, second.get(i * B..(i + 1) * B)) {
+            to.copy_from_slice(from);
+        }
+        point
+    };
+    positions.iter().enumerate().map(point).collect()
+}
+
 /// The positions and `count` channels of `A` and `B` floats, in one pass.
 fn split<const W: usize, const A: usize, const B: usize>(
     packed: &[[f32; W]],
     count: usize,
 ) -> Unpacked {
     let n = packed.len();
-    let mut positions = Vec::with_capacity(n);
+    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(n);
     let mut first: Vec<[f32; A]> = Vec::with_capacity(n);
     let mut second: Vec<[f32; B]> = Vec::with_capacity(n);
-    for point in packed {
-        positions.push(take::<W, 3>(point, 0));
-        first.push(take(point, 3));
-        second.push(take(point, 3 + A));
+    // Written into the spare capacity, then the lengths set once: pushing to three vectors in
+    // one loop stored each one's length per point, and zeroed arrays cost a memset in wasm
+    // (whose allocator hands back used memory); either took about twice the time.
+    let outputs = positions.spare_capacity_mut().iter_mut().zip(first.spare_capacity_mut());
+    for ((p, a), (b, point)) in outputs.zip(second.spare_capacity_mut().iter_mut().zip(packed)) {
+        p.write(take(point, 0));
+        a.write(take(point, 3));
+        b.write(take(point, 3 + A));
+    }
+    // SAFETY: the loop ran over all `n` packed points (each vector's capacity is at least
+    // `n`), so the first `n` elements of each vector were written just above.
+    unsafe {
+        positions.set_len(n);
+        first.set_len(n);
+        second.set_len(n);
     }
     let channels = [first.into_flattened(), second.into_flattened()];
     (positions, channels.into_iter().take(count).collect())
@@ -358,16 +408,6 @@ fn split<const W: usize, const A: usize, const B: usize>(
 #[inline(always)]
 fn take<const W: usize, const N: usize>(point: &[f32; W], at: usize) -> [f32; N] {
     std::array::from_fn(|k| point.get(at + k).copied().unwrap_or(0.0))
-}
-
-/// Writes the values of a channel of `N` floats into floats `at..at + N` of the packed points
-/// (loops of constant width: no copy call per point).
-fn put<const W: usize, const N: usize>(packed: &mut [[f32; W]], values: &[f32], at: usize) {
-    for (point, value) in packed.iter_mut().zip(values.chunks_exact(N)) {
-        if let Some(to) = point.get_mut(at..at + N) {
-            to.copy_from_slice(value);
-        }
-    }
 }
 
 /// Floats `at..at + N` of every packed point.
