@@ -496,17 +496,26 @@ impl FVarLevel {
         self.corner_values[corner as usize]
     }
 
-    /// The cells next to a seam, in order: those with a corner that sees a value other than its
-    /// vertex's first, or with a seam edge. Every other cell's corners see their vertices
-    /// (numbered as the vertices), so its children and the rules that read it need no
-    /// face-varying care ([`FVarLevel::child_topology`], `interpolate`).
+    /// The cells next to a seam, in order: every cell around a vertex with several values
+    /// (which holds each cell with a corner that sees a value other than its vertex's first),
+    /// and those with a seam edge. Every other cell's corners see their vertices (numbered as
+    /// the vertices), so its children and the rules that read it need no face-varying care
+    /// ([`FVarLevel::child_topology`], `interpolate`). Found from the seams, which are sparse,
+    /// rather than by reading every corner.
     pub(crate) fn cells_near_seams(&self, mesh: &HalfEdgeMesh) -> Vec<u32> {
-        let near = |h: usize| {
-            self.corner_values[h] != mesh.he_from[h]
-                || self.edge_tag(mesh.he_edge[h]) & edge_tag::MISMATCH != 0
-        };
-        let cells = 0..mesh.num_cells() as u32;
-        cells.filter(|&c| mesh.cell_range(c as usize).any(near)).collect()
+        let mut cells = Vec::new();
+        for &[v, ..] in &self.several {
+            cells.extend(mesh.out_half_edges(v).iter().map(|&h| mesh.cell_of(h)));
+        }
+        for (e, &t) in self.edge_tags.iter().enumerate() {
+            if t & edge_tag::MISMATCH != 0 {
+                let sides = &mesh.edge_half_edges[mesh.edge_range(e)];
+                cells.extend(sides.iter().map(|&h| mesh.cell_of(h)));
+            }
+        }
+        cells.sort_unstable();
+        cells.dedup();
+        cells
     }
 
     /// The next level's topology (no values yet) after `split` of `mesh`: OpenSubdiv's
