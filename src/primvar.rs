@@ -319,31 +319,6 @@ pub fn pack_points<const W: usize>(
     packed
 }
 
-/// Positions, and channels of any widths, as [`unpack_points`] gives them back.
-pub type Unpacked = (Vec<[f32; 3]>, Vec<Vec<f32>>);
-
-/// The positions and the channels of `widths` that [`pack_points`] packed. One or two channels
-/// come out in one pass over the packed points.
-pub fn unpack_points<const W: usize>(packed: &[[f32; W]], widths: &[usize]) -> Unpacked {
-    if let Some(unpacked) = by_layout!(widths, split(packed, widths.len())) {
-        return unpacked;
-    }
-    let positions = column::<W, 3>(packed, 0);
-    let mut at = 3;
-    let channels = widths.iter().map(|&width| {
-        let values = match width {
-            1 => column::<W, 1>(packed, at).into_flattened(),
-            2 => column::<W, 2>(packed, at).into_flattened(),
-            3 => column::<W, 3>(packed, at).into_flattened(),
-            4 => column::<W, 4>(packed, at).into_flattened(),
-            _ => column::<W, 5>(packed, at).into_flattened(),
-        };
-        at += width;
-        values
-    });
-    (positions, channels.collect())
-}
-
 /// Writes the values of a channel of `N` floats into floats `at..at + N` of the packed points
 /// (loops of constant width: no copy call per point).
 fn put<const W: usize, const N: usize>(packed: &mut [[f32; W]], values: &[f32], at: usize) {
@@ -375,51 +350,103 @@ fn join<const W: usize, const A: usize, const B: usize>(
     positions.iter().enumerate().map(point).collect()
 }
 
-/// The positions and `count` channels of `A` and `B` floats, in one pass.
-fn split<const W: usize, const A: usize, const B: usize>(
-    packed: &[[f32; W]],
-    count: usize,
-) -> Unpacked {
-    let n = packed.len();
-    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(n);
-    let mut first: Vec<[f32; A]> = Vec::with_capacity(n);
-    let mut second: Vec<[f32; B]> = Vec::with_capacity(n);
-    // Written into the spare capacity, then the lengths set once: pushing to three vectors in
-    // one loop stored each one's length per point, and zeroed arrays cost a memset in wasm
-    // (whose allocator hands back used memory); either took about twice the time.
-    let outputs = positions.spare_capacity_mut().iter_mut().zip(first.spare_capacity_mut());
-    for ((p, a), (b, point)) in outputs.zip(second.spare_capacity_mut().iter_mut().zip(packed)) {
-        p.write(take(point, 0));
-        a.write(take(point, 3));
-        b.write(take(point, 3 + A));
+/// Where a host appends a level's new values: the values themselves (every kind of
+/// [`Primvar`]), or [`Unpacking`], which takes packed points apart as they come.
+pub trait Points<P: Primvar> {
+    /// Appends `count` values, value `i` the one whose weights `rule(i, _)` gives.
+    fn extend_with<'a>(
+        &mut self,
+        count: u32,
+        sum: &mut P::Sum<'a>,
+        rule: impl FnMut(u32, &mut P::Sum<'a>),
+    );
+    /// Appends every value of `other`.
+    fn extend_from(&mut self, other: &P);
+}
+
+impl<P: Primvar> Points<P> for P {
+    #[inline(always)]
+    fn extend_with<'a>(
+        &mut self,
+        count: u32,
+        sum: &mut P::Sum<'a>,
+        rule: impl FnMut(u32, &mut P::Sum<'a>),
+    ) {
+        Primvar::extend_with(self, count, sum, rule);
     }
-    // SAFETY: the loop ran over all `n` packed points (each vector's capacity is at least
-    // `n`), so the first `n` elements of each vector were written just above.
-    unsafe {
-        positions.set_len(n);
-        first.set_len(n);
-        second.set_len(n);
+
+    fn extend_from(&mut self, other: &P) {
+        Primvar::extend_from(self, other);
     }
-    let channels = [first.into_flattened(), second.into_flattened()];
-    (positions, channels.into_iter().take(count).collect())
+}
+
+/// The child of packed points ([`pack_points`]) taken apart as the host appends them: the
+/// positions, and each channel at its own width. (Kept packed and unpacked after, the child
+/// cost a second pass over it and twice its memory.)
+pub struct Unpacking {
+    positions: Vec<[f32; 3]>,
+    /// Each channel's first float in a packed point, its width and its values.
+    channels: Vec<(usize, usize, Vec<f32>)>,
+}
+
+impl Unpacking {
+    /// Room for `count` points of channels of `widths` (packed after the positions, in order).
+    pub fn new(count: usize, widths: &[usize]) -> Self {
+        let mut at = 3;
+        let channels = widths.iter().map(|&width| {
+            at += width;
+            (at - width, width, Vec::with_capacity(count * width))
+        });
+        Unpacking { positions: Vec::with_capacity(count), channels: channels.collect() }
+    }
+
+    #[inline(always)]
+    fn push<const W: usize>(&mut self, point: &[f32; W]) {
+        self.positions.push(take(point, 0));
+        for (at, width, values) in &mut self.channels {
+            // Constant lengths for the widths a packed point holds: no copy call per value.
+            let at = *at;
+            match *width {
+                1 => values.extend_from_slice(&take::<W, 1>(point, at)),
+                2 => values.extend_from_slice(&take::<W, 2>(point, at)),
+                3 => values.extend_from_slice(&take::<W, 3>(point, at)),
+                4 => values.extend_from_slice(&take::<W, 4>(point, at)),
+                _ => values.extend_from_slice(&take::<W, 5>(point, at)),
+            }
+        }
+    }
+
+    /// The positions and the channels' values.
+    pub fn into_parts(self) -> (Vec<[f32; 3]>, Vec<Vec<f32>>) {
+        (self.positions, self.channels.into_iter().map(|(.., values)| values).collect())
+    }
+}
+
+impl<const W: usize> Points<Vec<[f32; W]>> for Unpacking {
+    #[inline(always)]
+    fn extend_with<'a>(
+        &mut self,
+        count: u32,
+        sum: &mut PointSum<'a, W>,
+        mut rule: impl FnMut(u32, &mut PointSum<'a, W>),
+    ) {
+        for i in 0..count {
+            let point = sum.eval(|w| rule(i, w));
+            self.push(&point);
+        }
+    }
+
+    fn extend_from(&mut self, other: &Vec<[f32; W]>) {
+        for point in other {
+            self.push(point);
+        }
+    }
 }
 
 /// Floats `at..at + N` of a packed point (zeros past its end).
 #[inline(always)]
 fn take<const W: usize, const N: usize>(point: &[f32; W], at: usize) -> [f32; N] {
     std::array::from_fn(|k| point.get(at + k).copied().unwrap_or(0.0))
-}
-
-/// Floats `at..at + N` of every packed point.
-fn column<const W: usize, const N: usize>(packed: &[[f32; W]], at: usize) -> Vec<[f32; N]> {
-    let value = |point: &[f32; W]| {
-        let mut value = [0.0; N];
-        if let Some(from) = point.get(at..at + N) {
-            value.copy_from_slice(from);
-        }
-        value
-    };
-    packed.iter().map(value).collect()
 }
 
 /// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.

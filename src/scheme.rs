@@ -14,7 +14,7 @@ use crate::predict::sqrt3_refines_boundary;
 pub use crate::predict::{
     check_guards, check_guards_with, predict, predict_counts, AttributeSizes, Prediction,
 };
-use crate::primvar::{pack_points, unpack_points, Channel, Primvar, Rows, Unpacked, MAX_PACKED};
+use crate::primvar::{pack_points, Channel, Primvar, Rows, Unpacking, MAX_PACKED};
 use crate::refine::dqq::{self, DualBoundary};
 use crate::refine::{check_distinct_corners, quad_tri, sqrt3, Pqq, PrimalSplit, Ptq};
 pub use crate::refined::Refined;
@@ -815,15 +815,16 @@ fn refine_packed<S: PrimalSplit<R>, R>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     channels: &[Channel<'_>],
-) -> Option<Unpacked> {
+) -> Option<Unpacking> {
     let width = 3 + channels.iter().map(|c| c.width).sum::<usize>();
     if channels.is_empty() || width > MAX_PACKED {
         return None;
     }
     let parent = pack_points::<MAX_PACKED>(&mesh.positions, channels);
-    let child = S::points(mesh, rules, &parent);
     let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
-    Some(unpack_points(&child, &widths))
+    let mut child = Unpacking::new(S::num_points(mesh), &widths);
+    S::points_into(mesh, rules, &parent, &mut child);
+    Some(child)
 }
 
 /// One level's result, with its vertex-varying rows: flat arrays, or for the last quad split the
@@ -872,7 +873,8 @@ impl<V: Primvar> Primal<'_, '_, V> {
         }
         let (positions, rows, mut fvar_values) =
             match refine_packed::<S, R>(&mesh, rules, &channels) {
-                Some((positions, refined)) => {
+                Some(child) => {
+                    let (positions, refined) = child.into_parts();
                     let mut refined = refined.into_iter();
                     let rows = has_rows.then(|| refined.next()).flatten();
                     let rows = rows.and_then(|values| self.rows.with_channel(values));

@@ -15,7 +15,7 @@ pub mod sqrt3;
 
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
-use crate::primvar::Primvar;
+use crate::primvar::{Points, Primvar};
 use crate::rules::{LevelTags, QuadSplitRules, TriSplitRules, Weights};
 
 /// Refuses a mesh with a cell that repeats a vertex, naming the first, for `scheme`, which
@@ -57,8 +57,22 @@ pub trait PrimalSplit<R> {
     fn edge_rule(rules: &R, mesh: &HalfEdgeMesh, edge: u32, w: &mut impl Weights);
     /// The rule of vertex `vertex`'s new value.
     fn vertex_rule(rules: &R, mesh: &HalfEdgeMesh, vertex: u32, w: &mut impl Weights);
-    /// The new values of `parent` (positions or other vertex-varying data) in child vertex order.
-    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P;
+    /// Number of child vertices.
+    fn num_points(mesh: &HalfEdgeMesh) -> usize;
+    /// The new values of `parent` (positions or other vertex-varying data) in child vertex
+    /// order, appended to `out`.
+    fn points_into<P: Primvar>(
+        mesh: &HalfEdgeMesh,
+        rules: &R,
+        parent: &P,
+        out: &mut impl Points<P>,
+    );
+    /// The new values of `parent` in child vertex order.
+    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
+        let mut points = parent.with_capacity(Self::num_points(mesh));
+        Self::points_into(mesh, rules, parent, &mut points);
+        points
+    }
     /// The child faces' vertex indices.
     fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32>;
     /// The parent cell of child face `f`.
@@ -90,8 +104,17 @@ impl<R: QuadSplitRules> PrimalSplit<R> for Pqq {
         rules.vertex_point(mesh, vertex, w)
     }
 
-    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
-        pqq::refine_values(mesh, rules, parent)
+    fn num_points(mesh: &HalfEdgeMesh) -> usize {
+        pqq::num_child_vertices(mesh)
+    }
+
+    fn points_into<P: Primvar>(
+        mesh: &HalfEdgeMesh,
+        rules: &R,
+        parent: &P,
+        out: &mut impl Points<P>,
+    ) {
+        pqq::refine_values_into(mesh, rules, parent, out)
     }
 
     fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
@@ -127,8 +150,17 @@ impl<R: TriSplitRules> PrimalSplit<R> for Ptq {
         rules.vertex_point(mesh, vertex, w)
     }
 
-    fn points<P: Primvar>(mesh: &HalfEdgeMesh, rules: &R, parent: &P) -> P {
-        ptq::refine_values(mesh, rules, parent)
+    fn num_points(mesh: &HalfEdgeMesh) -> usize {
+        ptq::num_child_vertices(mesh)
+    }
+
+    fn points_into<P: Primvar>(
+        mesh: &HalfEdgeMesh,
+        rules: &R,
+        parent: &P,
+        out: &mut impl Points<P>,
+    ) {
+        ptq::refine_values_into(mesh, rules, parent, out)
     }
 
     fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {

@@ -18,7 +18,7 @@
 //! writes only the entries of its own iteration.
 
 use crate::mesh::{quad_and_fan_chunks, HalfEdgeMesh};
-use crate::primvar::Primvar;
+use crate::primvar::{Points, Primvar};
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, QuadSplitRules};
 
@@ -47,16 +47,27 @@ pub fn refine_values<R: QuadSplitRules, P: Primvar>(
     rules: &R,
     parent: &P,
 ) -> P {
+    let mut points = parent.with_capacity(num_child_vertices(mesh));
+    refine_values_into(mesh, rules, parent, &mut points);
+    points
+}
+
+/// [`refine_values`], appended to `points` (the values themselves, or a sink that unpacks them
+/// as they come, see [`Points`]).
+pub fn refine_values_into<R: QuadSplitRules, P: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &P,
+    points: &mut impl Points<P>,
+) {
     let (v, f, e) = (mesh.num_vertices() as u32, mesh.num_cells() as u32, mesh.num_edges() as u32);
     let mut face_points = parent.with_capacity(f as usize);
     let mut sum = parent.sum(&mesh.he_from, None);
     face_points.extend_with(f, &mut sum, |c, w| rules.face_point(mesh, c, w));
     let mut sum = parent.sum(&mesh.he_from, Some(&face_points));
-    let mut points = parent.with_capacity(num_child_vertices(mesh));
     points.extend_with(v, &mut sum, |i, w| rules.vertex_point(mesh, i, w));
     points.extend_from(&face_points);
     points.extend_with(e, &mut sum, |i, w| rules.edge_point(mesh, i, w));
-    points
 }
 
 /// Child cell `h`: the quad (old vertex, edge point, face point, edge point) at the corner where

@@ -16,7 +16,7 @@
 //! non-manifold inputs).
 
 use crate::mesh::HalfEdgeMesh;
-use crate::primvar::Primvar;
+use crate::primvar::{Points, Primvar};
 use crate::rules::crease::decay;
 use crate::rules::{LevelTags, TriSplitRules};
 
@@ -42,12 +42,22 @@ pub fn refine_values<R: TriSplitRules, P: Primvar>(
     rules: &R,
     parent: &P,
 ) -> P {
+    let mut points = parent.with_capacity(num_child_vertices(mesh));
+    refine_values_into(mesh, rules, parent, &mut points);
+    points
+}
+
+/// [`refine_values`], appended to `points` (as [`super::pqq::refine_values_into`]).
+pub fn refine_values_into<R: TriSplitRules, P: Primvar>(
+    mesh: &HalfEdgeMesh,
+    rules: &R,
+    parent: &P,
+    points: &mut impl Points<P>,
+) {
     let (v, e) = (mesh.num_vertices() as u32, mesh.num_edges() as u32);
     let mut sum = parent.sum(&mesh.he_from, None);
-    let mut points = parent.with_capacity(num_child_vertices(mesh));
     points.extend_with(v, &mut sum, |i, w| rules.vertex_point(mesh, i, w));
     points.extend_with(e, &mut sum, |i, w| rules.edge_point(mesh, i, w));
-    points
 }
 
 /// The child triangles' vertex indices, 12 per parent triangle. The mesh must be all triangles.
