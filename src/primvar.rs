@@ -403,15 +403,16 @@ impl Unpacking {
     #[inline(always)]
     fn push<const W: usize>(&mut self, point: &[f32; W]) {
         self.positions.push(take(point, 0));
-        for (at, width, values) in &mut self.channels {
-            // Constant lengths for the widths a packed point holds: no copy call per value.
-            let at = *at;
-            match *width {
-                1 => values.extend_from_slice(&take::<W, 1>(point, at)),
-                2 => values.extend_from_slice(&take::<W, 2>(point, at)),
-                3 => values.extend_from_slice(&take::<W, 3>(point, at)),
-                4 => values.extend_from_slice(&take::<W, 4>(point, at)),
-                _ => values.extend_from_slice(&take::<W, 5>(point, at)),
+        // The first two channels unrolled (a colour, a UV), then any others.
+        let (first, rest) = match &mut self.channels[..] {
+            [first, rest @ ..] => (first, rest),
+            [] => return,
+        };
+        push_value(first, point);
+        if let [second, rest @ ..] = rest {
+            push_value(second, point);
+            for channel in rest {
+                push_value(channel, point);
             }
         }
     }
@@ -440,6 +441,23 @@ impl<const W: usize> Points<Vec<[f32; W]>> for Unpacking {
         for point in other {
             self.push(point);
         }
+    }
+}
+
+/// Appends a channel's value (`(at, width, values)` of [`Unpacking`]) from a packed point, in
+/// a copy of constant length for each width a packed point holds.
+#[inline(always)]
+fn push_value<const W: usize>(
+    (at, width, values): &mut (usize, usize, Vec<f32>),
+    point: &[f32; W],
+) {
+    let at = *at;
+    match *width {
+        1 => values.extend_from_slice(&take::<W, 1>(point, at)),
+        2 => values.extend_from_slice(&take::<W, 2>(point, at)),
+        3 => values.extend_from_slice(&take::<W, 3>(point, at)),
+        4 => values.extend_from_slice(&take::<W, 4>(point, at)),
+        _ => values.extend_from_slice(&take::<W, 5>(point, at)),
     }
 }
 
