@@ -7,6 +7,7 @@
 // unchanged: init() then returns the module at once. Where top-level await is not available, the
 // explicit entry is 'subsurf/init' (subsurf.js).
 import init from './subsurf.js';
+import './freed.js';
 
 await init();
 

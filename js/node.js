@@ -1,5 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { initSync } from './subsurf.js';
+import './freed.js';
 
 initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
 
