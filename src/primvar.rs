@@ -461,10 +461,11 @@ fn push_value<const W: usize>(
     }
 }
 
-/// Floats `at..at + N` of a packed point (zeros past its end).
+/// Floats `at..at + N` of a packed point (zeros if they pass its end, which a layout that
+/// [`pack_points`] made never does): one bounds check, not one per float.
 #[inline(always)]
 fn take<const W: usize, const N: usize>(point: &[f32; W], at: usize) -> [f32; N] {
-    std::array::from_fn(|k| point.get(at + k).copied().unwrap_or(0.0))
+    point.get(at..).and_then(|rest| rest.first_chunk::<N>()).copied().unwrap_or([0.0; N])
 }
 
 /// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.

@@ -816,12 +816,11 @@ fn refine_packed<S: PrimalSplit<R>, R>(
     rules: &R,
     channels: &[Channel<'_>],
 ) -> Option<Unpacking> {
-    let width = 3 + channels.iter().map(|c| c.width).sum::<usize>();
-    if channels.is_empty() || width > MAX_PACKED {
+    let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
+    if widths.is_empty() || 3 + widths.iter().sum::<usize>() > MAX_PACKED {
         return None;
     }
     let parent = pack_points::<MAX_PACKED>(&mesh.positions, channels);
-    let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
     let mut child = Unpacking::new(S::num_points(mesh), &widths);
     S::points_into(mesh, rules, &parent, &mut child);
     Some(child)

@@ -161,6 +161,26 @@ fn affine_channels_follow_a_list_of_schemes() {
     }
 }
 
+/// A face-varying `uv` with one value per face corner, none shared (every edge is a seam): float
+/// `k` of the values is `(k % period) * step`.
+fn uv_on_every_corner(mesh: &PolyMesh, period: usize, step: f32) -> Attribute {
+    let corners = mesh.indices.len();
+    let values: Vec<f32> = (0..2 * corners).map(|i| (i % period) as f32 * step).collect();
+    Attribute::face_varying("uv", 2, values, (0..corners as u32).collect())
+}
+
+/// Face 1 a hole (when there are more than two faces) and the first face's first edge a crease
+/// of `sharpness`.
+fn hole_and_crease(mesh: &PolyMesh, sharpness: f32) -> Tags {
+    let mut tags = Tags::default();
+    if mesh.face_sizes.len() > 2 {
+        tags.holes = vec![1];
+    }
+    let [a, b] = [mesh.indices[0], mesh.indices[1]];
+    tags.creases = vec![Crease { vertices: [a, b], sharpness }];
+    tags
+}
+
 /// A face-varying channel beside them changes nothing in the vertex-varying channels, bit for
 /// bit, through creases and holes too. (These channels are wider than one packed walk with the
 /// positions, `primvar::MAX_PACKED`: each kind walks the rules on its own.)
@@ -168,19 +188,11 @@ fn affine_channels_follow_a_list_of_schemes() {
 fn a_face_varying_channel_leaves_the_vertex_varying_ones_alone() {
     let mut checked = 0;
     for (name, mesh) in sample_meshes() {
-        // One value per face corner, none shared: every edge is a seam.
-        let corners = mesh.indices.len();
-        let values: Vec<f32> = (0..2 * corners).map(|i| (i % 11) as f32 * 0.125).collect();
-        let uv = Attribute::face_varying("uv", 2, values, (0..corners as u32).collect());
+        let uv = uv_on_every_corner(&mesh, 11, 0.125);
         // And one that follows the vertices: no seam at all.
         let smooth =
             Attribute::face_varying("w", 1, vec![0.5; mesh.num_vertices()], mesh.indices.clone());
-        let mut tags = Tags::default();
-        if mesh.face_sizes.len() > 2 {
-            tags.holes = vec![1];
-        }
-        let [a, b] = [mesh.indices[0], mesh.indices[1]];
-        tags.creases = vec![Crease { vertices: [a, b], sharpness: 1.5 }];
+        let tags = hole_and_crease(&mesh, 1.5);
         for scheme in [Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear] {
             let Some(mesh) = input_for(scheme, &mesh) else { continue };
             for (levels, tags) in [(1, Tags::default()), (2, tags.clone())] {
@@ -215,15 +227,8 @@ fn packed_channels_sum_as_they_would_alone() {
         let colour: Vec<f32> =
             mesh.positions.chunks_exact(3).flat_map(|p| affine4(p)[..3].to_vec()).collect();
         let colour = Attribute::vertex("colour", 3, colour);
-        let corners = mesh.indices.len();
-        let values: Vec<f32> = (0..2 * corners).map(|i| (i % 13) as f32 * 0.0625).collect();
-        let uv = Attribute::face_varying("uv", 2, values, (0..corners as u32).collect());
-        let mut tags = Tags::default();
-        if mesh.face_sizes.len() > 2 {
-            tags.holes = vec![1];
-        }
-        let [a, b] = [mesh.indices[0], mesh.indices[1]];
-        tags.creases = vec![Crease { vertices: [a, b], sharpness: 2.5 }];
+        let uv = uv_on_every_corner(&mesh, 13, 0.0625);
+        let tags = hole_and_crease(&mesh, 2.5);
         for scheme in [Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear] {
             let Some(mesh) = input_for(scheme, &mesh) else { continue };
             for (levels, tags) in [(1, Tags::default()), (2, tags.clone())] {

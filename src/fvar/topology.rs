@@ -606,25 +606,21 @@ impl FVarLevel {
         // A cell away from seams has child corners that see the child vertices: the child
         // faces' own indices.
         let mut near = near_seams.iter().copied().peekable();
-        let quads = split == Split::Quad && mesh.cell_size == 4;
         for c in 0..mesh.num_cells() as u32 {
             let cell = mesh.cell_range(c as usize);
             let is_near = near.next_if_eq(&c).is_some();
-            // A quad of an all-quad mesh: its half-edges `4c..4c + 4`, its sixteen child
-            // corners in one copy.
-            let sides = mesh.he_from.get(cell.clone()).and_then(|v| v.first_chunk::<4>());
-            let sides =
-                sides.zip(mesh.he_edge.get(cell.clone()).and_then(|e| e.first_chunk::<4>()));
-            if let (true, false, Some((&[v0, v1, v2, v3], edges))) = (quads, is_near, sides) {
-                let face = (nv as u32) + face_point_of[c as usize];
-                let [e0, e1, e2, e3] = edges.map(|e| edge_base as u32 + e);
-                corners.extend_from_slice(&[
-                    v0, e0, face, e3, v1, e1, face, e0, v2, e2, face, e1, v3, e3, face, e2,
-                ]);
-                continue;
-            }
             if split == Split::Quad && !is_near {
                 let face = (nv as u32) + face_point_of[c as usize];
+                // A quad: its sixteen child corners in one copy.
+                let quad = <&[u32; 4]>::try_from(&mesh.he_from[cell.clone()]);
+                let sides = <&[u32; 4]>::try_from(&mesh.he_edge[cell.clone()]);
+                if let (Ok(&[v0, v1, v2, v3]), Ok(sides)) = (quad, sides) {
+                    let [e0, e1, e2, e3] = sides.map(|e| edge_base as u32 + e);
+                    corners.extend_from_slice(&[
+                        v0, e0, face, e3, v1, e1, face, e0, v2, e2, face, e1, v3, e3, face, e2,
+                    ]);
+                    continue;
+                }
                 let edge_point = |h: usize| edge_base as u32 + mesh.he_edge[h];
                 let last = cell.end - 1;
                 let mut previous = edge_point(last);
