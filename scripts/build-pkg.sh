@@ -25,7 +25,7 @@ wasm-bindgen --target web --out-dir "$OUT" "${CARGO_TARGET_DIR:-target}/wasm32-u
 BG="$OUT/${CRATE}_bg.wasm"
 BEFORE=$(size "$BG")
 echo "== build-pkg: wasm-opt -O3 ($("$WASM_OPT" --version))"
-"$WASM_OPT" -O3 --strip-debug --strip-producers "$BG" -o "$BG.opt"
+"$WASM_OPT" -O3 -ocimfs 10 --strip-debug --strip-producers "$BG" -o "$BG.opt"
 mv "$BG.opt" "$BG"
 AFTER=$(size "$BG")
 

@@ -36,22 +36,25 @@ pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
     }
 }
 
-/// The limit frame of every vertex of `mesh` (whose positions are the level's), and the limit
-/// of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under the
-/// position masks; with `tangent_rows`, `rows` under the two tangent masks too (for stencil
+/// The limit frame of every vertex of `mesh` (whose positions are the level's) when `with_frame`
+/// (else it is left empty: a stencil table gives the frame of any positions later), and the
+/// limit of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under
+/// the position masks; with `tangent_rows`, `rows` under the two tangent masks too (for stencil
 /// tables of normals), all three from [`Primvar::limit_rows`].
 pub fn evaluate<V: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &LimitRules,
     rows: &V,
     tangent_rows: bool,
+    with_frame: bool,
 ) -> (LimitFrame, V, Option<[V; 2]>) {
     let n = mesh.num_vertices();
     let points = &mesh.positions;
+    let reserved = if with_frame { 3 * n } else { 0 };
     let mut frame = LimitFrame {
-        positions: Vec::with_capacity(3 * n),
-        tangents: [Vec::with_capacity(3 * n), Vec::with_capacity(3 * n)],
-        normals: Vec::with_capacity(3 * n),
+        positions: Vec::with_capacity(reserved),
+        tangents: [Vec::with_capacity(reserved), Vec::with_capacity(reserved)],
+        normals: Vec::with_capacity(reserved),
     };
     let with_rows = !rows.is_empty();
     // With tangent rows, all three rows of a vertex come from `Primvar::limit_rows` below.
@@ -59,8 +62,14 @@ pub fn evaluate<V: Primvar>(
     let mut out_rows = rows.with_capacity(if position_rows { n } else { 0 });
     let mut row_sum = rows.sum(&mesh.he_from, None);
     let mut hood = Neighbourhood::default();
-    for v in mesh.vertex_indices() {
+    for v in mesh.vertex_indices().filter(|_| with_frame || position_rows) {
         rules.gather(mesh, v, &mut hood);
+        if position_rows {
+            out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
+        }
+        if !with_frame {
+            continue;
+        }
         let mut sum = PointSum::new(points, &mesh.he_from, &[]);
         frame.positions.extend(sum.eval(|w| rules.position(&hood, w)));
         let mut second = PointSum::new(points, &mesh.he_from, &[]);
@@ -71,9 +80,6 @@ pub fn evaluate<V: Primvar>(
         frame.tangents[0].extend(first);
         frame.tangents[1].extend(second);
         frame.normals.extend(normal(first, second));
-        if position_rows {
-            out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
-        }
     }
     let mut tangents = None;
     if with_rows && tangent_rows {

@@ -290,7 +290,7 @@ pub(crate) fn build_stencils(
     let count = attributes.len();
     let mut stencils = None;
     let mut tangents = None;
-    let mut refined = refine_levels(
+    let refined = refine_levels(
         Cow::Borrowed(base),
         options,
         tags,
@@ -300,11 +300,10 @@ pub(crate) fn build_stencils(
             stencils = Some(last);
             attributes::unpack_all(Rows::default(), &Default::default(), fvar, &fvar_layout, count)
         },
-        options.normals.then_some(&mut tangents),
+        Some(&mut tangents),
         None,
     )?;
-    let normals = refined.take_normals();
-    let (mesh, face_varying) = refined.into_parts();
+    let (mut mesh, face_varying) = refined.into_parts();
     let stencils = stencils.unwrap_or_default();
     let what = || too_large(format!("more than {max_bytes}"));
     let mut table = stencils.into_table(what)?;
@@ -335,6 +334,24 @@ pub(crate) fn build_stencils(
             mesh.num_vertices()
         )));
     }
+    // The positions and normals at build time: one evaluation of the table, which costs less
+    // than the limit masks would have on the positions (the levels left the last level's
+    // positions, which are right as they are for a table without the limit).
+    let control = base.positions.as_flattened();
+    let normals = match (table.tangent_weights().is_some(), options.normals) {
+        (true, _) => {
+            let mut normals = vec![0.0; mesh.positions.len()];
+            table.evaluate_with_normals(control, &mut mesh.positions, &mut normals)?;
+            Some(normals)
+        }
+        (false, true) => Some(crate::limit::face_normals(&mesh)),
+        (false, false) => {
+            if options.limit {
+                table.evaluate(control, 3, &mut mesh.positions)?;
+            }
+            None
+        }
+    };
     Ok(StencilBuild { table, mesh, face_varying, normals })
 }
 
@@ -490,6 +507,10 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
 /// alongside; `finish` turns the last level's rows and channels back into attribute channels.
 /// With `limit`, the last level is evaluated at the limit (`rows` too, by the position masks).
 /// `progress` is told after each level.
+///
+/// `tangent_rows` is for a stencil build, where `rows` stand for the positions: the limit's
+/// positions and normals are then left to the table (the result keeps the last level's
+/// positions and has no normals), and with `normals` the tangents' rows are written there.
 #[allow(clippy::too_many_arguments)]
 fn refine_levels<'a, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
@@ -505,9 +526,11 @@ fn refine_levels<'a, V: Primvar>(
         check_limit(options)?;
     }
     let levels = options.levels();
+    let stencil_build = tangent_rows.is_some();
     let refined =
         run_levels(base, options, tags, rows, fvar, finish, tangent_rows, progress.as_deref_mut())?;
-    let refined = if options.normals { refined.with_face_normals() } else { refined };
+    let face_normals = options.normals && !stencil_build;
+    let refined = if face_normals { refined.with_face_normals() } else { refined };
     if levels > 0 {
         let done = Progress {
             level: levels,
@@ -767,9 +790,12 @@ fn run_levels<'a, V: Primvar>(
     if masks_wanted {
         let starts = first_faces.as_ref().map(|f| &f.vertices[..]);
         let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
-        let want_tangent_rows = tangent_rows.is_some();
+        // A stencil build (`tangent_rows`) gives its frame from the table (see
+        // `build_stencils`): the masks run once, for the rows.
+        let stencil_build = tangent_rows.is_some();
+        let want_tangent_rows = stencil_build && options.normals;
         let (frame, limit_rows, tangents) =
-            crate::limit::evaluate(&mesh, &rules, &rows, want_tangent_rows);
+            crate::limit::evaluate(&mesh, &rules, &rows, want_tangent_rows, !stencil_build);
         let mut poly = mesh.to_poly();
         // The limit rows replace the level's under `limit`; otherwise the tangent rows may
         // share their entries.
@@ -780,7 +806,9 @@ fn run_levels<'a, V: Primvar>(
             Some(limit_rows)
         };
         if options.limit {
-            poly.positions = frame.positions;
+            if !stencil_build {
+                poly.positions = frame.positions;
+            }
             let linear = fvar_mode == FVarLinear::All;
             for channel in fvar.iter_mut().filter(|c| c.analysed) {
                 crate::limit::limit_face_varying(&mesh, &rules, &mut channel.level, linear);
@@ -791,6 +819,9 @@ fn run_levels<'a, V: Primvar>(
         }
         if let Some(tags) = level_tags.as_ref().filter(|t| t.has_holes()) {
             poly = drop_holes(poly, tags, &mut fvar);
+        }
+        if stencil_build {
+            return Ok(Refined::poly(poly, finish(rows, fvar)));
         }
         let normals = options.normals.then_some(frame.normals);
         return Ok(Refined::with_tangents(poly, finish(rows, fvar), frame.tangents, normals));

@@ -344,52 +344,20 @@ impl Primvar for Stencils {
         let mut out = [weights_only(), weights_only(), positions];
         out.rotate_right(1);
         let mut recorded: [Stencil; 3] = Default::default();
-        let mut sources: Vec<(u32, [f64; 3])> = Vec::with_capacity(32);
-        // As in `StencilSum`: per control vertex the row's sums and the stamp of the row.
-        let mut sums = vec![([0.0f64; 3], 0u32); self.num_control];
-        let mut touched: Vec<u32> = Vec::with_capacity(256);
-        for (v, stamp) in (0..n as u32).zip((1..=u32::MAX).cycle()) {
-            if stamp == 1 {
-                sums.iter_mut().for_each(|e| e.1 = 0);
-            }
+        let mut sum = LimitSum {
+            sources: Vec::with_capacity(32),
+            listed: vec![(0, 0); n],
+            sums: vec![Slot::default(); self.num_control],
+            touched: vec![0; self.num_control + 1],
+            stamp: 0,
+        };
+        for v in 0..n as u32 {
             recorded.iter_mut().for_each(|s| s.sources.clear());
             masks(v, &mut recorded);
-            sources.clear();
-            for (k, mask) in recorded.iter().enumerate() {
-                for &(source, weight) in &mask.sources {
-                    let parent = match source {
-                        Source::Vertex(p) => p,
-                        Source::Corner(h) => mesh.he_from[h as usize],
-                        // Limit masks weight no face point.
-                        Source::FacePoint(_) => continue,
-                    };
-                    match sources.iter_mut().find(|(p, _)| *p == parent) {
-                        Some((_, w)) => w[k] += f64::from(weight),
-                        None => {
-                            let mut w = [0.0; 3];
-                            w[k] = f64::from(weight);
-                            sources.push((parent, w));
-                        }
-                    }
-                }
-            }
-            touched.clear();
-            for &(parent, w) in &sources {
-                let (controls, weights) = self.row(parent as usize);
-                for (&c, &cw) in controls.iter().zip(weights) {
-                    let slot = c as usize;
-                    let cw = f64::from(cw);
-                    let products = [cw * w[0], cw * w[1], cw * w[2]];
-                    let entry = &mut sums[slot];
-                    if entry.1 == stamp {
-                        (0..3).for_each(|k| entry.0[k] += products[k]);
-                    } else {
-                        *entry = (products, stamp);
-                        touched.push(c);
-                    }
-                }
-            }
-            touched.sort_unstable();
+            sum.next_row();
+            sum.merge(mesh, &recorded);
+            let count = sum.gather(self);
+            let touched = &sum.touched[..count];
             let [a, b, c] = &mut out;
             let start = a.indices.len();
             if a.overflowed || self.overflowed || start + touched.len() > a.limit {
@@ -399,23 +367,124 @@ impl Primvar for Stencils {
                 }
                 continue;
             }
-            for &control in &touched {
-                let (w, _) = sums[control as usize];
-                if w == [0.0; 3] {
-                    continue;
-                }
-                a.indices.push(control);
-                for (rows, &weight) in [&mut *a, &mut *b, &mut *c].into_iter().zip(&w) {
-                    rows.weights.push(weight as f32);
-                }
-            }
-            let span = [start as u32, (a.indices.len() - start) as u32];
-            for rows in [&mut *a, &mut *b, &mut *c] {
-                rows.spans.push(span);
-            }
+            emit(touched, &sum.sums, [a, b, c]);
         }
         let [positions, first, second] = out;
         (positions, [first, second])
+    }
+}
+
+/// The composition of [`Primvar::limit_rows`]: one vertex's three masks (limit position, two
+/// tangents) merged per source vertex of the level, then the sources' rows gathered into three
+/// sums per control vertex at once.
+struct LimitSum {
+    /// The level's vertices the masks weight, with the three masks' weights of each.
+    sources: Vec<(u32, [f32; 3])>,
+    /// Per level vertex, the stamp of the row that last listed it in `sources`, and where.
+    listed: Vec<(u32, u32)>,
+    /// Per control vertex, the row's sums and stamp.
+    sums: Vec<Slot>,
+    /// The row's control vertices, with one slot more than there are control vertices (see
+    /// [`LimitSum::gather`]).
+    touched: Vec<u32>,
+    stamp: u32,
+}
+
+impl LimitSum {
+    /// Starts a row: a new stamp (clearing the stamps when they run out).
+    fn next_row(&mut self) {
+        if self.stamp == u32::MAX {
+            self.sums.iter_mut().for_each(|s| *s = Slot::default());
+            self.listed.iter_mut().for_each(|l| l.0 = 0);
+            self.stamp = 0;
+        }
+        self.stamp += 1;
+        self.sources.clear();
+    }
+
+    /// Lists the level vertices `masks` weight in `sources`, each once with its three weights.
+    fn merge(&mut self, mesh: &HalfEdgeMesh, masks: &[Stencil; 3]) {
+        let stamp = self.stamp;
+        for (k, mask) in masks.iter().enumerate() {
+            for &(source, weight) in &mask.sources {
+                let parent = match source {
+                    Source::Vertex(p) => p,
+                    Source::Corner(h) => mesh.he_from[h as usize],
+                    // Limit masks weight no face point.
+                    Source::FacePoint(_) => continue,
+                };
+                let entry = &mut self.listed[parent as usize];
+                if entry.0 == stamp {
+                    self.sources[entry.1 as usize].1[k] += weight;
+                } else {
+                    *entry = (stamp, self.sources.len() as u32);
+                    let mut w = [0.0; 3];
+                    w[k] = weight;
+                    self.sources.push((parent, w));
+                }
+            }
+        }
+    }
+
+    /// Adds up the rows of `level` that `sources` name, weighted; returns how many control
+    /// vertices the row has (`touched[..count]`, ascending).
+    fn gather(&mut self, level: &Stencils) -> usize {
+        let stamp = self.stamp;
+        let sums = &mut self.sums[..];
+        let touched = &mut self.touched[..];
+        let mut count = 0;
+        for &(parent, w) in &self.sources {
+            let (controls, weights) = level.row(parent as usize);
+            let w = Slot::masks(w);
+            for (&c, &cw) in controls.iter().zip(weights) {
+                let first = sums[c as usize].add(w, cw, stamp);
+                // Stored always and kept when first: no branch. A control vertex is listed
+                // once per row, so `count` stays within the control count, and the slot after
+                // the last takes the stores that follow it.
+                touched[count] = c;
+                count += usize::from(first);
+            }
+        }
+        touched[..count].sort_unstable();
+        count
+    }
+}
+
+/// Appends one limit row of `touched` (ascending) with the three sums of each to `a` (entries
+/// and the position's weights) and to `b`, `c` (the tangents' weights on the same entries); a
+/// control vertex whose three sums cancelled is left out.
+fn emit(touched: &[u32], sums: &[Slot], [a, b, c]: [&mut Stencils; 3]) {
+    let start = a.indices.len();
+    // Whole slices, so that the copies run without a capacity check per entry (as
+    // `Stencils::append_row`); an entry whose sums all cancelled (rare) is taken out after.
+    a.indices.extend_from_slice(touched);
+    let mut zero = false;
+    for (k, rows) in [&mut *a, &mut *b, &mut *c].into_iter().enumerate() {
+        rows.weights.extend(touched.iter().map(|&control| sums[control as usize].sums()[k]));
+    }
+    for control in touched {
+        zero |= sums[*control as usize].sums() == [0.0; 3];
+    }
+    if zero {
+        let mut kept = start;
+        for i in start..a.indices.len() {
+            let w = [a.weights[i], b.weights[i], c.weights[i]];
+            if w != [0.0; 3] {
+                a.indices[kept] = a.indices[i];
+                for (rows, w) in [&mut *a, &mut *b, &mut *c].into_iter().zip(w) {
+                    rows.weights[kept] = w;
+                }
+                kept += 1;
+            }
+        }
+        a.indices.truncate(kept);
+        for rows in [&mut *a, &mut *b, &mut *c] {
+            rows.weights.truncate(kept);
+        }
+    }
+    let span = [start as u32, (a.indices.len() - start) as u32];
+    for rows in [a, b, c] {
+        rows.spans.push(span);
     }
 }
 
@@ -737,6 +806,73 @@ impl StencilTable {
                 }
             }
         }
+    }
+}
+
+/// Per control vertex, one limit row's three sums (the position and the two tangents) and, in
+/// the fourth lane, the stamp of the row that last wrote them: a product is one 16-byte load
+/// and store. The sums are f32, as OpenSubdiv's stencil builder keeps them: a limit row adds
+/// about a hundred products of level rows that are already rounded to f32.
+#[derive(Clone, Copy, Default)]
+#[repr(C, align(16))]
+struct Slot {
+    sums: [f32; 3],
+    stamp: u32,
+}
+
+/// The three masks' weights of one source, as [`Slot::add`] takes them.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+type Masks = core::arch::wasm32::v128;
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+type Masks = [f32; 3];
+
+impl Slot {
+    /// The sums of the row that last wrote the slot.
+    fn sums(&self) -> [f32; 3] {
+        self.sums
+    }
+
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    #[inline(always)]
+    fn masks([a, b, c]: [f32; 3]) -> Masks {
+        core::arch::wasm32::f32x4(a, b, c, 0.0)
+    }
+
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    #[inline(always)]
+    fn masks(w: [f32; 3]) -> Masks {
+        w
+    }
+
+    /// Adds `weight` times `masks` to the sums of row `stamp` (starting them when the slot
+    /// holds another row's); true when it started them.
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    #[inline(always)]
+    fn add(&mut self, masks: Masks, weight: f32, stamp: u32) -> bool {
+        use core::arch::wasm32::*;
+        let at = (self as *mut Slot).cast::<v128>();
+        // SAFETY: a `Slot` is 16 bytes, readable and writable through `self`.
+        let old = unsafe { v128_load(at) };
+        let product = f32x4_mul(masks, f32x4_splat(weight));
+        let first = u32x4_extract_lane::<3>(old) != stamp;
+        let sum = if first { product } else { f32x4_add(old, product) };
+        // SAFETY: as above.
+        unsafe { v128_store(at, u32x4_replace_lane::<3>(sum, stamp)) };
+        first
+    }
+
+    /// Adds `weight` times `masks` to the sums of row `stamp` (starting them when the slot
+    /// holds another row's); true when it started them.
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    #[inline(always)]
+    fn add(&mut self, masks: Masks, weight: f32, stamp: u32) -> bool {
+        let first = self.stamp != stamp;
+        for (sum, mask) in self.sums.iter_mut().zip(masks) {
+            let product = mask * weight;
+            *sum = if first { product } else { *sum + product };
+        }
+        self.stamp = stamp;
+        first
     }
 }
 
