@@ -437,12 +437,10 @@ impl LimitSum {
             let (controls, weights) = level.row(parent as usize);
             let w = Slot::masks(w);
             for (&c, &cw) in controls.iter().zip(weights) {
-                let first = sums[c as usize].add(w, cw, stamp);
-                // Stored always and kept when first: no branch. A control vertex is listed
-                // once per row, so `count` stays within the control count, and the slot after
-                // the last takes the stores that follow it.
-                touched[count] = c;
-                count += usize::from(first);
+                if sums[c as usize].add(w, cw, stamp) {
+                    touched[count] = c;
+                    count += 1;
+                }
             }
         }
         touched[..count].sort_unstable();
