@@ -11,6 +11,7 @@ use crate::options::Options;
 use crate::scheme::build_stencils;
 use crate::stencil::StencilTable;
 use crate::tags::Tags;
+use std::sync::OnceLock;
 
 /// Where an evaluator's normals come from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,12 +28,19 @@ enum NormalSource {
 /// and face-varying channels (fixed), its stencil table, and how its normals are made. Equal,
 /// frame by frame, to [`crate::scheme::subdivide_with_attributes`] with the same options,
 /// `limit` and `normals` included, to f32 rounding.
+///
+/// The positions and normals at build time are made from the table when first asked for
+/// ([`Evaluator::positions`]): an evaluator used frame by frame never needs them.
 #[derive(Clone, Debug)]
 pub struct Evaluator {
     table: StencilTable,
-    mesh: PolyMesh,
+    /// The output faces; the positions are left empty (see `at_build`).
+    faces: PolyMesh,
     attributes: Vec<Attribute>,
-    normals: Option<Vec<f32>>,
+    /// The control positions the evaluator was built with.
+    control: Vec<f32>,
+    /// The output positions and normals of `control`, on first use.
+    at_build: OnceLock<(Vec<f32>, Option<Vec<f32>>)>,
     source: NormalSource,
 }
 
@@ -66,9 +74,10 @@ impl Evaluator {
         }
         Ok(Evaluator {
             table: build.table,
-            mesh: build.mesh,
+            faces: build.mesh,
             attributes: channels,
-            normals: build.normals,
+            control: base.positions.as_flattened().to_vec(),
+            at_build: OnceLock::new(),
             source,
         })
     }
@@ -78,9 +87,34 @@ impl Evaluator {
         &self.table
     }
 
-    /// The output mesh: faces, and the positions at build time.
-    pub fn mesh(&self) -> &PolyMesh {
-        &self.mesh
+    /// The output faces: vertex indices, listed face after face.
+    pub fn indices(&self) -> &[u32] {
+        &self.faces.indices
+    }
+
+    /// The number of corners of each output face.
+    pub fn face_sizes(&self) -> &[u32] {
+        &self.faces.face_sizes
+    }
+
+    /// The output faces as triangles (see [`PolyMesh::triangles`]).
+    pub fn triangles(&self) -> Vec<u32> {
+        self.faces.triangles()
+    }
+
+    /// The output positions at build time (3 floats per output vertex), made on first use.
+    pub fn positions(&self) -> &[f32] {
+        &self.at_build().0
+    }
+
+    /// The positions and normals at build time: the table's for the control positions it was
+    /// built with (which cannot fail: the table and those positions come from one build).
+    fn at_build(&self) -> &(Vec<f32>, Option<Vec<f32>>) {
+        self.at_build.get_or_init(|| {
+            let normals = self.has_normals();
+            crate::scheme::frame(&self.table, &self.control, &self.faces, normals)
+                .unwrap_or_default()
+        })
     }
 
     /// The output channels at build time, in the order given: face-varying ones refined,
@@ -89,9 +123,9 @@ impl Evaluator {
         &self.attributes
     }
 
-    /// The normals at build time, when asked for.
+    /// The normals at build time, when asked for; made on first use.
     pub fn normals(&self) -> Option<&[f32]> {
-        self.normals.as_deref()
+        self.at_build().1.as_deref()
     }
 
     /// True when [`Evaluator::evaluate`] writes normals.
@@ -157,7 +191,7 @@ impl Evaluator {
             }
             (NormalSource::Faces, Some(normals)) => {
                 self.table.evaluate(control, 3, positions)?;
-                let mesh = &self.mesh;
+                let mesh = &self.faces;
                 crate::limit::face_normals_into(
                     positions,
                     &mesh.indices,

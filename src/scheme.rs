@@ -234,8 +234,7 @@ pub fn stencil_table(
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
     let base = HalfEdgeMesh::from_poly(mesh)?;
-    let build = build_stencils(&base, &[], options, tags)?;
-    Ok((build.table, build.mesh))
+    stencil_table_mesh(&base, options, tags)
 }
 
 /// [`stencil_table`] of an already built half-edge mesh.
@@ -244,19 +243,44 @@ pub fn stencil_table_mesh(
     options: &Options,
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
-    let build = build_stencils(base, &[], options, tags)?;
-    Ok((build.table, build.mesh))
+    let StencilBuild { table, mut mesh, .. } = build_stencils(base, &[], options, tags)?;
+    (mesh.positions, _) = frame(&table, base.positions.as_flattened(), &mesh, false)?;
+    Ok((table, mesh))
 }
 
 /// What one stencil build gives: the table (with the tangent weights when `options.normals`
-/// and the last level has limit masks), the output mesh (its positions those of the control
-/// positions at build time), the refined face-varying channels of `attributes` (in their
-/// order; vertex-varying ones are left to the table), and the normals at build time.
+/// and the last level has limit masks), the output faces (`mesh`, its positions left empty:
+/// [`frame`] gives them for any control positions), and the refined face-varying channels of
+/// `attributes` (in their order; vertex-varying ones are left to the table).
 pub(crate) struct StencilBuild {
     pub table: StencilTable,
     pub mesh: PolyMesh,
     pub face_varying: Vec<Attribute>,
-    pub normals: Option<Vec<f32>>,
+}
+
+/// The output positions of `table` for `control` (3 floats per control vertex, as many as the
+/// table reads) and, with `normals`, the normals: from the table's tangent weights when it has
+/// them, else from the faces of `faces` (whose positions are not read). A build leaves them
+/// to this: one evaluation costs less than running the levels' rules on the positions.
+pub(crate) fn frame(
+    table: &StencilTable,
+    control: &[f32],
+    faces: &PolyMesh,
+    normals: bool,
+) -> Result<(Vec<f32>, Option<Vec<f32>>)> {
+    let mut positions = vec![0.0; 3 * table.num_stencils()];
+    if table.tangent_weights().is_some() {
+        let mut out = vec![0.0; positions.len()];
+        table.evaluate_with_normals(control, &mut positions, &mut out)?;
+        return Ok((positions, Some(out)));
+    }
+    table.evaluate(control, 3, &mut positions)?;
+    let normals = normals.then(|| {
+        let mut out = vec![0.0; positions.len()];
+        crate::limit::face_normals_into(&positions, &faces.indices, &faces.face_sizes, &mut out);
+        out
+    });
+    Ok((positions, normals))
 }
 
 /// Runs the levels of `options` once with stencils as the vertex-varying data (see
@@ -334,25 +358,9 @@ pub(crate) fn build_stencils(
             mesh.num_vertices()
         )));
     }
-    // The positions and normals at build time: one evaluation of the table, which costs less
-    // than the limit masks would have on the positions (the levels left the last level's
-    // positions, which are right as they are for a table without the limit).
-    let control = base.positions.as_flattened();
-    let normals = match (table.tangent_weights().is_some(), options.normals) {
-        (true, _) => {
-            let mut normals = vec![0.0; mesh.positions.len()];
-            table.evaluate_with_normals(control, &mut mesh.positions, &mut normals)?;
-            Some(normals)
-        }
-        (false, true) => Some(crate::limit::face_normals(&mesh)),
-        (false, false) => {
-            if options.limit {
-                table.evaluate(control, 3, &mut mesh.positions)?;
-            }
-            None
-        }
-    };
-    Ok(StencilBuild { table, mesh, face_varying, normals })
+    // The levels left no positions worth keeping (see `StencilBuild::mesh`).
+    mesh.positions = Vec::new();
+    Ok(StencilBuild { table, mesh, face_varying })
 }
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
@@ -590,6 +598,8 @@ fn run_levels<'a, V: Primvar>(
 ) -> Result<Refined<'a>> {
     // The limit masks run on the last level's mesh, for the limit or for its normals.
     let masks_wanted = options.limit || options.normals;
+    // A stencil build leaves the positions to its table (see `build_stencils`).
+    let stencil_build = tangent_rows.is_some();
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -685,7 +695,14 @@ fn run_levels<'a, V: Primvar>(
         // After the mixed split, the child mesh is built from its faces, which numbers edges
         // its own way: the face-varying edge tags follow (parent vertices, first edge point).
         let mut renumber = None;
-        let mut primal = Primal { rows: &rows, fvar: &mut fvar, sharp, mode: fvar_mode, last };
+        let mut primal = Primal {
+            rows: &rows,
+            fvar: &mut fvar,
+            sharp,
+            mode: fvar_mode,
+            last,
+            positions: !stencil_build,
+        };
         let (child, next_tags) = match (scheme, &level_tags) {
             (Scheme::CatmullClark, Some(t)) => {
                 let rules = CreasedCatmullClark { boundary, tags: t };
@@ -790,9 +807,7 @@ fn run_levels<'a, V: Primvar>(
     if masks_wanted {
         let starts = first_faces.as_ref().map(|f| &f.vertices[..]);
         let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
-        // A stencil build (`tangent_rows`) gives its frame from the table (see
-        // `build_stencils`): the masks run once, for the rows.
-        let stencil_build = tangent_rows.is_some();
+        // A stencil build's masks run once, for the rows.
         let want_tangent_rows = stencil_build && options.normals;
         let (frame, limit_rows, tangents) =
             crate::limit::evaluate(&mesh, &rules, &rows, want_tangent_rows, !stencil_build);
@@ -874,6 +889,9 @@ struct Primal<'r, 's, V> {
     sharp: LevelSharpness<'s>,
     mode: crate::options::FVarLinear,
     last: bool,
+    /// False in a stencil build, whose table gives the positions: the child positions are then
+    /// left at zero (the other hosts still compute theirs).
+    positions: bool,
 }
 
 impl<V: Primvar> Primal<'_, '_, V> {
@@ -921,7 +939,12 @@ impl<V: Primvar> Primal<'_, '_, V> {
                         })
                         .collect();
                     let rows = refine_rows::<S, R, V>(&mesh, rules, self.rows);
-                    (S::points(&mesh, rules, &mesh.positions), rows, fvar_values)
+                    let positions = if self.positions {
+                        S::points(&mesh, rules, &mesh.positions)
+                    } else {
+                        vec![[0.0; 3]; S::num_points(&mesh)]
+                    };
+                    (positions, rows, fvar_values)
                 }
             };
         fvar_values.resize_with(steps.len(), || None);

@@ -64,8 +64,8 @@ fn check(mesh: &PolyMesh, attributes: &[Attribute], options: &Options, tags: &Ta
         let what = format!("{what}, frame {t}");
         let tolerance = 1e-5 * diagonal(&want_mesh.positions);
         assert_close(&positions, &want_mesh.positions, tolerance, &what);
-        assert_eq!(evaluator.mesh().indices, want_mesh.indices, "{what}: faces");
-        assert_eq!(evaluator.mesh().face_sizes, want_mesh.face_sizes, "{what}: faces");
+        assert_eq!(evaluator.indices(), want_mesh.indices, "{what}: faces");
+        assert_eq!(evaluator.face_sizes(), want_mesh.face_sizes, "{what}: faces");
         match want_normals {
             Some(want) => assert_normals(&normals, &want, &what),
             None => assert!(!evaluator.has_normals(), "{what}"),

@@ -89,16 +89,19 @@ impl Evaluator {
     /// triangles, attributes (face-varying ones fixed from then on) and normals. Fresh arrays.
     #[wasm_bindgen(unchecked_return_type = "SubdivideResult")]
     pub fn result(&self) -> JsResult<JsValue> {
-        let mesh = self.inner.mesh();
-        let object = mesh_object(mesh)?;
-        set_field(&object, "triangles", &Uint32Array::from(&mesh.triangles()[..]))?;
+        let inner = &self.inner;
+        let object = Object::new();
+        set_field(&object, "positions", &Float32Array::from(inner.positions()))?;
+        set_field(&object, "indices", &Uint32Array::from(inner.indices()))?;
+        set_field(&object, "faceSizes", &Uint32Array::from(inner.face_sizes()))?;
+        set_field(&object, "triangles", &Uint32Array::from(&inner.triangles()[..]))?;
         if let Some(normals) = self.inner.normals() {
             set_field(&object, "normals", &Float32Array::from(normals))?;
         }
         if !self.inner.attributes().is_empty() {
             set_field(&object, "attributes", &channels_object(self.inner.attributes())?)?;
         }
-        Ok(object)
+        Ok(object.into())
     }
 
     /// The stencil table as fresh typed arrays, for a shader of your own: output vertex `i` is
