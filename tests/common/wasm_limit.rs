@@ -78,13 +78,14 @@ fn an_evaluator_gives_subdivide_for_every_frame() {
     assert_eq!(evaluator.num_control_vertices(), 8);
     assert_eq!(evaluator.num_vertices(), 98);
     assert!(evaluator.has_normals());
-    // At build time, the result is subdivide's.
+    // At build time, the result is subdivide's (the points to rounding: the table gives them).
     let built = ok(evaluator.result());
     let plain = ok(subdivide(&cube(), &options));
     for key in ["indices", "faceSizes", "triangles"] {
         assert_eq!(u32s(&built, key), u32s(&plain, key), "{key}");
     }
-    assert_eq!(f32s(&built, "positions"), f32s(&plain, "positions"));
+    assert!(within(&f32s(&built, "positions"), &f32s(&plain, "positions"), 1e-5));
+    assert!(within(&f32s(&built, "normals"), &f32s(&plain, "normals"), 1e-4));
     let mut frame = JsValue::UNDEFINED;
     for t in [0.0f32, 0.5, 1.3] {
         let moved = twisted(&cube_arrays().0, t);
