@@ -86,7 +86,8 @@ impl Evaluator {
     }
 
     /// What `subdivide` returns for the positions at build time: positions, indices, faceSizes,
-    /// triangles, attributes (face-varying ones fixed from then on) and normals. Fresh arrays.
+    /// triangles, attributes (face-varying ones fixed from then on) and normals. Fresh arrays;
+    /// the points (to f32 rounding) and normals are the table's, evaluated on the first call.
     #[wasm_bindgen(unchecked_return_type = "SubdivideResult")]
     pub fn result(&self) -> JsResult<JsValue> {
         let inner = &self.inner;
