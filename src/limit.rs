@@ -62,7 +62,9 @@ pub fn evaluate<V: Primvar>(
     let mut out_rows = rows.with_capacity(if position_rows { n } else { 0 });
     let mut row_sum = rows.sum(&mesh.he_from, None);
     let mut hood = Neighbourhood::default();
-    for v in mesh.vertex_indices().filter(|_| with_frame || position_rows) {
+    // Nothing to walk for without the frame or rows of positions (tangent rows come below).
+    let walked = if with_frame || position_rows { n as u32 } else { 0 };
+    for v in 0..walked {
         rules.gather(mesh, v, &mut hood);
         if position_rows {
             out_rows.push(&mut row_sum, |w| rules.position(&hood, w));

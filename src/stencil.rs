@@ -349,7 +349,7 @@ impl Primvar for Stencils {
             sources: Vec::with_capacity(32),
             listed: vec![(0, 0); n],
             sums: vec![Slot::default(); self.num_control],
-            touched: vec![0; self.num_control + 1],
+            touched: vec![0; self.num_control],
             stamp: 0,
         };
         for v in 0..n as u32 {
@@ -385,8 +385,8 @@ struct LimitSum {
     listed: Vec<(u32, u32)>,
     /// Per control vertex, the row's sums and stamp.
     sums: Vec<Slot>,
-    /// The row's control vertices, with one slot more than there are control vertices (see
-    /// [`LimitSum::gather`]).
+    /// The row's control vertices, `touched[..count]`: one slot per control vertex, as in
+    /// `StencilSum`.
     touched: Vec<u32>,
     stamp: u32,
 }
@@ -457,14 +457,10 @@ fn emit(touched: &[u32], sums: &[Slot], [a, b, c]: [&mut Stencils; 3]) {
     // Whole slices, so that the copies run without a capacity check per entry (as
     // `Stencils::append_row`); an entry whose sums all cancelled (rare) is taken out after.
     a.indices.extend_from_slice(touched);
-    let mut zero = false;
     for (k, rows) in [&mut *a, &mut *b, &mut *c].into_iter().enumerate() {
         rows.weights.extend(touched.iter().map(|&control| sums[control as usize].sums()[k]));
     }
-    for control in touched {
-        zero |= sums[*control as usize].sums() == [0.0; 3];
-    }
-    if zero {
+    if touched.iter().any(|&control| sums[control as usize].sums() == [0.0; 3]) {
         let mut kept = start;
         for i in start..a.indices.len() {
             let w = [a.weights[i], b.weights[i], c.weights[i]];
@@ -860,8 +856,7 @@ impl Slot {
         first
     }
 
-    /// Adds `weight` times `masks` to the sums of row `stamp` (starting them when the slot
-    /// holds another row's); true when it started them.
+    /// The scalar `add`, for targets without `simd128`.
     #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
     #[inline(always)]
     fn add(&mut self, masks: Masks, weight: f32, stamp: u32) -> bool {
