@@ -107,13 +107,18 @@ impl Evaluator {
         &self.at_build().0
     }
 
-    /// The positions and normals at build time: the table's for the control positions it was
-    /// built with (which cannot fail: the table and those positions come from one build).
+    /// The positions and normals at build time: [`Evaluator::evaluate`] of the control
+    /// positions it was built with (which cannot fail: the table and those positions come
+    /// from one build).
     fn at_build(&self) -> &(Vec<f32>, Option<Vec<f32>>) {
         self.at_build.get_or_init(|| {
-            let normals = self.has_normals();
-            crate::scheme::frame(&self.table, &self.control, &self.faces, normals)
-                .unwrap_or_default()
+            let n = 3 * self.num_vertices();
+            let mut positions = vec![0.0; n];
+            let mut normals = self.has_normals().then(|| vec![0.0; n]);
+            match self.evaluate(&self.control, &mut positions, normals.as_deref_mut()) {
+                Ok(()) => (positions, normals),
+                Err(_) => Default::default(),
+            }
         })
     }
 

@@ -244,43 +244,19 @@ pub fn stencil_table_mesh(
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
     let StencilBuild { table, mut mesh, .. } = build_stencils(base, &[], options, tags)?;
-    (mesh.positions, _) = frame(&table, base.positions.as_flattened(), &mesh, false)?;
+    mesh.positions = vec![0.0; 3 * table.num_stencils()];
+    table.evaluate(base.positions.as_flattened(), 3, &mut mesh.positions)?;
     Ok((table, mesh))
 }
 
 /// What one stencil build gives: the table (with the tangent weights when `options.normals`
-/// and the last level has limit masks), the output faces (`mesh`, its positions left empty:
-/// [`frame`] gives them for any control positions), and the refined face-varying channels of
+/// and the last level has limit masks), the output faces (`mesh`, its positions left empty: the
+/// table gives them for any control positions), and the refined face-varying channels of
 /// `attributes` (in their order; vertex-varying ones are left to the table).
 pub(crate) struct StencilBuild {
     pub table: StencilTable,
     pub mesh: PolyMesh,
     pub face_varying: Vec<Attribute>,
-}
-
-/// The output positions of `table` for `control` (3 floats per control vertex, as many as the
-/// table reads) and, with `normals`, the normals: from the table's tangent weights when it has
-/// them, else from the faces of `faces` (whose positions are not read). A build leaves them
-/// to this: one evaluation costs less than running the levels' rules on the positions.
-pub(crate) fn frame(
-    table: &StencilTable,
-    control: &[f32],
-    faces: &PolyMesh,
-    normals: bool,
-) -> Result<(Vec<f32>, Option<Vec<f32>>)> {
-    let mut positions = vec![0.0; 3 * table.num_stencils()];
-    if table.tangent_weights().is_some() {
-        let mut out = vec![0.0; positions.len()];
-        table.evaluate_with_normals(control, &mut positions, &mut out)?;
-        return Ok((positions, Some(out)));
-    }
-    table.evaluate(control, 3, &mut positions)?;
-    let normals = normals.then(|| {
-        let mut out = vec![0.0; positions.len()];
-        crate::limit::face_normals_into(&positions, &faces.indices, &faces.face_sizes, &mut out);
-        out
-    });
-    Ok((positions, normals))
 }
 
 /// Runs the levels of `options` once with stencils as the vertex-varying data (see

@@ -458,9 +458,9 @@ fn emit(touched: &[u32], sums: &[Slot], [a, b, c]: [&mut Stencils; 3]) {
     // `Stencils::append_row`); an entry whose sums all cancelled (rare) is taken out after.
     a.indices.extend_from_slice(touched);
     for (k, rows) in [&mut *a, &mut *b, &mut *c].into_iter().enumerate() {
-        rows.weights.extend(touched.iter().map(|&control| sums[control as usize].sums()[k]));
+        rows.weights.extend(touched.iter().map(|&control| sums[control as usize].sums[k]));
     }
-    if touched.iter().any(|&control| sums[control as usize].sums() == [0.0; 3]) {
+    if touched.iter().any(|&control| sums[control as usize].sums == [0.0; 3]) {
         let mut kept = start;
         for i in start..a.indices.len() {
             let w = [a.weights[i], b.weights[i], c.weights[i]];
@@ -822,11 +822,6 @@ type Masks = core::arch::wasm32::v128;
 type Masks = [f32; 3];
 
 impl Slot {
-    /// The sums of the row that last wrote the slot.
-    fn sums(&self) -> [f32; 3] {
-        self.sums
-    }
-
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
     #[inline(always)]
     fn masks([a, b, c]: [f32; 3]) -> Masks {

@@ -47,9 +47,7 @@ pub fn refine_values<R: QuadSplitRules, P: Primvar>(
     rules: &R,
     parent: &P,
 ) -> P {
-    let mut points = parent.with_capacity(num_child_vertices(mesh));
-    refine_values_into(mesh, rules, parent, &mut points);
-    points
+    <super::Pqq as super::PrimalSplit<R>>::points(mesh, rules, parent)
 }
 
 /// [`refine_values`], appended to `points` (the values themselves, or a sink that unpacks them

@@ -42,9 +42,7 @@ pub fn refine_values<R: TriSplitRules, P: Primvar>(
     rules: &R,
     parent: &P,
 ) -> P {
-    let mut points = parent.with_capacity(num_child_vertices(mesh));
-    refine_values_into(mesh, rules, parent, &mut points);
-    points
+    <super::Ptq as super::PrimalSplit<R>>::points(mesh, rules, parent)
 }
 
 /// [`refine_values`], appended to `points` (as [`super::pqq::refine_values_into`]).
