@@ -103,7 +103,8 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
         }
         // A pass without an early exit vectorizes; the place is looked for only on failure.
         let all_finite = a.values.iter().fold(true, |ok, x| ok & x.is_finite());
-        if let Some(k) = a.values.iter().position(|x| !x.is_finite()).filter(|_| !all_finite) {
+        let first_bad = || a.values.iter().position(|x| !x.is_finite());
+        if let Some(k) = (!all_finite).then(first_bad).flatten() {
             return Err(invalid(
                 name,
                 format!(
@@ -139,7 +140,8 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
                 let largest = indices.iter().fold(0, |m, &x| m.max(x));
                 let in_range = indices.is_empty() || (largest as usize) < a.len();
                 let out_of_range = |&x: &u32| x as usize >= a.len();
-                if let Some(k) = indices.iter().position(out_of_range).filter(|_| !in_range) {
+                let first_bad = || indices.iter().position(out_of_range);
+                if let Some(k) = (!in_range).then(first_bad).flatten() {
                     return Err(invalid(
                         name,
                         format!(

@@ -370,6 +370,14 @@ impl HalfEdgeMesh {
             || self.marked_non_manifold.get(e as usize).copied().unwrap_or(false)
     }
 
+    /// True when every edge has one half-edge or two running opposite ways and none is marked
+    /// non-manifold: each half-edge's twin is then its next around the edge (itself on a
+    /// boundary), and edges can be visited as pairs of half-edges.
+    #[inline]
+    pub(crate) fn has_simple_edges(&self) -> bool {
+        !self.non_manifold_edges && !self.repeated_corners && self.marked_non_manifold.is_empty()
+    }
+
     /// True when some cell lists a vertex more than once (OpenSubdiv accepts such faces, and
     /// so do Catmull-Clark, Loop, bilinear and midpoint here; see the module docs).
     pub fn has_repeated_corners(&self) -> bool {
