@@ -110,7 +110,7 @@ pub fn interpolate<F: ValueRules>(
             own_faces = vec![0.0f32; mesh.num_cells() * width];
             for (c, face) in own_faces.chunks_exact_mut(width.max(1)).enumerate() {
                 centroid(face, c);
-                if let Some(&k) = face_point_of.get(c).filter(|&&k| k != u32::MAX) {
+                if let Some(k) = face_point_of.of(c as u32) {
                     let at = (nv + k as usize) * width;
                     values[at..at + width].copy_from_slice(face);
                 }
@@ -130,10 +130,17 @@ pub fn interpolate<F: ValueRules>(
         }
     };
 
+    let loops = mesh.has_repeated_corners();
     for e in 0..mesh.num_edges() as u32 {
+        let cv = edge_base as u32 + e;
+        let matches = child.tags[cv as usize] & tag::MISMATCH == 0;
+        // Most edges: away from seams, their values refined with the surface's (read nothing
+        // else).
+        if matches && !loops && near.as_ref().is_some_and(|n| !n.edges[e as usize]) {
+            continue;
+        }
         let [a, b] = mesh.edge_vertices[e as usize];
         let hs = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
-        let cv = edge_base as u32 + e;
         if a == b {
             // An edge from a vertex to itself (a face that repeats a vertex): infinitely sharp,
             // between the values of its face's two corners at the vertex.
@@ -142,7 +149,7 @@ pub fn interpolate<F: ValueRules>(
             midpoint(out.at(cv), from, parent.corner_values[to as usize]);
             continue;
         }
-        if child.tags[cv as usize] & tag::MISMATCH == 0 {
+        if matches {
             if near.as_ref().is_some_and(|n| !n.edges[e as usize]) {
                 continue;
             }

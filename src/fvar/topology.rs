@@ -54,21 +54,47 @@ impl Split {
         h - k + (k + step) % n
     }
 
-    /// For each cell, its face point's place among the face points (`u32::MAX` for a cell
-    /// without one); and how many there are.
-    pub(crate) fn face_points(self, mesh: &HalfEdgeMesh) -> (Vec<u32>, usize) {
-        let mut count = 0u32;
-        let map = (0..mesh.num_cells() as u32)
-            .map(|c| {
-                if self.splits_into_triangles(mesh, c) {
-                    u32::MAX
-                } else {
-                    count += 1;
-                    count - 1
-                }
-            })
-            .collect();
-        (map, count as usize)
+    /// Which cells get a face point and where it goes among the face points; and how many
+    /// there are.
+    pub(crate) fn face_points(self, mesh: &HalfEdgeMesh) -> (FacePoints, usize) {
+        match self {
+            Split::Quad => (FacePoints::Every, mesh.num_cells()),
+            Split::Triangle => (FacePoints::None, 0),
+            Split::Mixed => {
+                let mut count = 0u32;
+                let map = (0..mesh.num_cells() as u32)
+                    .map(|c| {
+                        if self.splits_into_triangles(mesh, c) {
+                            u32::MAX
+                        } else {
+                            count += 1;
+                            count - 1
+                        }
+                    })
+                    .collect();
+                (FacePoints::Map(map), count as usize)
+            }
+        }
+    }
+}
+
+/// The face points of a split ([`Split::face_points`]): cell `c`'s is the `c`-th when every
+/// cell has one (no map to build or read), none has one, or a map says (`u32::MAX` for none).
+pub(crate) enum FacePoints {
+    Every,
+    None,
+    Map(Vec<u32>),
+}
+
+impl FacePoints {
+    /// Cell `c`'s face point's place among the face points, if it has one.
+    #[inline]
+    pub(crate) fn of(&self, c: u32) -> Option<u32> {
+        match self {
+            FacePoints::Every => Some(c),
+            FacePoints::None => None,
+            FacePoints::Map(map) => map.get(c as usize).copied().filter(|&k| k != u32::MAX),
+        }
     }
 }
 
@@ -175,76 +201,18 @@ impl Numbering {
     }
 }
 
-/// What gathering a value's span finds (OpenSubdiv's `FVarLevel::ValueSpan`).
-#[derive(Clone, Copy, Debug, Default)]
-struct Span {
-    size: usize,
-    start: usize,
-    /// Seams inside the span, or more than one run of faces: the value is a corner.
-    discts: i32,
-    semi_sharp: u32,
-    inf_sharp: u32,
+/// The seams of a first level: each edge's tag, and per vertex whether a seam or the boundary
+/// touches it (`early`: a seam marked it before OpenSubdiv's vertex-order visit reached it).
+struct Seams {
+    edge_tags: Vec<u8>,
+    mismatch: Vec<bool>,
+    early: Vec<bool>,
+    boundary: Vec<bool>,
 }
 
-enum EdgeClass {
-    Seam,
-    Infinite,
-    SemiSharp,
-    Smooth,
-}
-
-impl FVarLevel {
-    /// Number of values.
-    pub fn num_values(&self) -> usize {
-        self.tags.len()
-    }
-
-    /// `[second value, count]` of vertex `v` when it has several values.
-    #[inline]
-    fn several_of(&self, v: u32) -> Option<[u32; 2]> {
-        if self.tags[v as usize] & tag::MISMATCH == 0 {
-            return None;
-        }
-        let i = self.several.binary_search_by_key(&v, |x| x[0]).ok()?;
-        Some([self.several[i][1], self.several[i][2]])
-    }
-
-    /// Number of values of vertex `v`.
-    #[inline]
-    pub(crate) fn count(&self, v: u32) -> u32 {
-        self.several_of(v).map_or(1, |[_, n]| n)
-    }
-
-    /// Value `s` of vertex `v` (its first is `v`).
-    #[inline]
-    pub(crate) fn value(&self, v: u32, s: u32) -> u32 {
-        match (s, self.several_of(v)) {
-            (0, _) | (_, None) => v,
-            (s, Some([second, _])) => second + s - 1,
-        }
-    }
-
-    /// Which of vertex `v`'s values `value` is.
-    #[inline]
-    fn sibling(&self, v: u32, value: u32) -> u32 {
-        match self.several_of(v) {
-            Some([second, _]) if value != v => value - second + 1,
-            _ => 0,
-        }
-    }
-
-    /// The first level's topology from a channel's `indices` (one per face corner) into
-    /// `values` (`width` floats each), under `mode`: its values become one per vertex and
-    /// sibling. OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues`, including the order in
-    /// which it visits vertices where that changes a result (which boundary edges are linear).
-    pub(crate) fn base(
-        mesh: &HalfEdgeMesh,
-        values: &[f32],
-        width: usize,
-        indices: &[u32],
-        sharp: &LevelSharpness,
-        mode: ModeRules,
-    ) -> Self {
+impl Seams {
+    #[inline(never)]
+    fn find(mesh: &HalfEdgeMesh, indices: &[u32], mode: ModeRules) -> Self {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         let value_at = |x: u32, v: u32| {
             let corner = if mesh.he_from[x as usize] == v { x } else { mesh.next_in_cell(x) };
@@ -314,6 +282,84 @@ impl FVarLevel {
                 }
             }
         }
+        Seams { edge_tags, mismatch, early, boundary }
+    }
+}
+
+/// What gathering a value's span finds (OpenSubdiv's `FVarLevel::ValueSpan`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Span {
+    size: usize,
+    start: usize,
+    /// Seams inside the span, or more than one run of faces: the value is a corner.
+    discts: i32,
+    semi_sharp: u32,
+    inf_sharp: u32,
+}
+
+enum EdgeClass {
+    Seam,
+    Infinite,
+    SemiSharp,
+    Smooth,
+}
+
+impl FVarLevel {
+    /// Number of values.
+    pub fn num_values(&self) -> usize {
+        self.tags.len()
+    }
+
+    /// `[second value, count]` of vertex `v` when it has several values.
+    #[inline]
+    fn several_of(&self, v: u32) -> Option<[u32; 2]> {
+        if self.tags[v as usize] & tag::MISMATCH == 0 {
+            return None;
+        }
+        let i = self.several.binary_search_by_key(&v, |x| x[0]).ok()?;
+        Some([self.several[i][1], self.several[i][2]])
+    }
+
+    /// Number of values of vertex `v`.
+    #[inline]
+    pub(crate) fn count(&self, v: u32) -> u32 {
+        self.several_of(v).map_or(1, |[_, n]| n)
+    }
+
+    /// Value `s` of vertex `v` (its first is `v`).
+    #[inline]
+    pub(crate) fn value(&self, v: u32, s: u32) -> u32 {
+        match (s, self.several_of(v)) {
+            (0, _) | (_, None) => v,
+            (s, Some([second, _])) => second + s - 1,
+        }
+    }
+
+    /// Which of vertex `v`'s values `value` is.
+    #[inline]
+    fn sibling(&self, v: u32, value: u32) -> u32 {
+        match self.several_of(v) {
+            Some([second, _]) if value != v => value - second + 1,
+            _ => 0,
+        }
+    }
+
+    /// The first level's topology from a channel's `indices` (one per face corner) into
+    /// `values` (`width` floats each), under `mode`: its values become one per vertex and
+    /// sibling. OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues`, including the order in
+    /// which it visits vertices where that changes a result (which boundary edges are linear).
+    #[inline(never)]
+    pub(crate) fn base(
+        mesh: &HalfEdgeMesh,
+        values: &[f32],
+        width: usize,
+        indices: &[u32],
+        sharp: &LevelSharpness,
+        mode: ModeRules,
+    ) -> Self {
+        let nv = mesh.num_vertices();
+        let Seams { mut edge_tags, mut mismatch, early, boundary } =
+            Seams::find(mesh, indices, mode);
         let smooth_corners_sharp = !sharp.sharp_corners && mode.corners_sharp;
         for v in 0..nv as u32 {
             if !boundary[v as usize] || early[v as usize] {
@@ -523,6 +569,7 @@ impl FVarLevel {
     /// the vertices), so its children and the rules that read it need no face-varying care
     /// ([`FVarLevel::child_topology`], `interpolate`). Found from the seams, which are sparse,
     /// rather than by reading every corner.
+    #[inline(never)]
     pub(crate) fn cells_near_seams(&self, mesh: &HalfEdgeMesh) -> Vec<u32> {
         let mut cells = Vec::new();
         for &[v, ..] in &self.several {
@@ -541,6 +588,7 @@ impl FVarLevel {
 
     /// The next level's topology (no values yet) after `split` of `mesh`: OpenSubdiv's
     /// `FVarRefinement::applyRefinement` for a uniform split.
+    #[inline(never)]
     pub(crate) fn child_topology(
         &self,
         mesh: &HalfEdgeMesh,
@@ -623,58 +671,38 @@ impl FVarLevel {
             let sides = &mesh.edge_half_edges[mesh.edge_range(e as usize)];
             next.value(cv, sides.iter().position(|&y| y == x).unwrap_or(0) as u32)
         };
-        let mut corners = Vec::with_capacity(4 * mesh.num_half_edges());
-        // A cell away from seams has child corners that see the child vertices: the child
-        // faces' own indices.
-        let mut near = near_seams.iter().copied().peekable();
-        for c in 0..mesh.num_cells() as u32 {
+        let face_point = |c: u32| nv as u32 + face_point_of.of(c).unwrap_or(0);
+        // Cell `c`'s child corners (four per half-edge), each seeing its value.
+        let cell_corners = |c: u32, out: &mut [u32]| {
             let cell = mesh.cell_range(c as usize);
-            let is_near = near.next_if_eq(&c).is_some();
-            if split == Split::Quad && !is_near {
-                let face = (nv as u32) + face_point_of[c as usize];
-                // A quad: its sixteen child corners in one copy.
-                let quad = <&[u32; 4]>::try_from(&mesh.he_from[cell.clone()]);
-                let sides = <&[u32; 4]>::try_from(&mesh.he_edge[cell.clone()]);
-                if let (Ok(&[v0, v1, v2, v3]), Ok(sides)) = (quad, sides) {
-                    let [e0, e1, e2, e3] = sides.map(|e| edge_base as u32 + e);
-                    corners.extend_from_slice(&[
-                        v0, e0, face, e3, v1, e1, face, e0, v2, e2, face, e1, v3, e3, face, e2,
-                    ]);
-                    continue;
-                }
-                let edge_point = |h: usize| edge_base as u32 + mesh.he_edge[h];
-                let last = cell.end - 1;
-                let mut previous = edge_point(last);
-                for h in cell {
-                    let next = edge_point(h);
-                    corners.extend_from_slice(&[mesh.he_from[h], next, face, previous]);
-                    previous = next;
-                }
-                continue;
-            }
             if split.splits_into_triangles(mesh, c) {
                 let [h0, h1, h2] = [0, 1, 2].map(|k| (cell.start + k) as u32);
                 let [e0, e1, e2] = [side(h0), side(h1), side(h2)];
-                corners.extend_from_slice(&[
-                    old(h0),
-                    e0,
-                    e2,
-                    e0,
-                    old(h1),
-                    e1,
-                    e2,
-                    e1,
-                    old(h2),
-                    e1,
-                    e2,
-                    e0,
-                ]);
+                let children = [old(h0), e0, e2, e0, old(h1), e1, e2, e1, old(h2), e1, e2, e0];
+                out.copy_from_slice(&children);
             } else {
-                let face = (nv as u32) + face_point_of[c as usize];
-                for h in cell.map(|h| h as u32) {
-                    corners.extend_from_slice(&[old(h), side(h), face, side(mesh.prev_in_cell(h))]);
+                let face = face_point(c);
+                for (h, out) in cell.zip(out.chunks_exact_mut(4)) {
+                    let h = h as u32;
+                    out.copy_from_slice(&[old(h), side(h), face, side(mesh.prev_in_cell(h))]);
                 }
             }
+        };
+        // A cell away from seams has child corners that see the child vertices: the child
+        // faces' own indices, which the uniform splits make whole; the cells near a seam are
+        // then written over.
+        let mut corners = match split {
+            Split::Quad => crate::refine::pqq::child_face_indices(mesh),
+            Split::Triangle => crate::refine::ptq::child_face_indices(mesh),
+            Split::Mixed => vec![0; 4 * mesh.num_half_edges()],
+        };
+        let mut write = |c: u32| {
+            let cell = mesh.cell_range(c as usize);
+            cell_corners(c, &mut corners[4 * cell.start..4 * cell.end]);
+        };
+        match split {
+            Split::Mixed => (0..mesh.num_cells() as u32).for_each(&mut write),
+            _ => near_seams.iter().for_each(|&c| write(c)),
         }
         next.corner_values = corners;
         next
