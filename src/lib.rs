@@ -31,6 +31,7 @@ pub mod io;
 pub mod limit;
 pub mod mesh;
 pub mod options;
+mod patches;
 pub mod predict;
 pub mod primvar;
 pub mod refine;

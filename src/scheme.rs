@@ -748,8 +748,11 @@ fn run_levels<'a, V: Primvar>(
         level_tags = next_tags;
         mesh = match child {
             // A mesh without vertices (Doo-Sabin of a mesh without faces) stays empty.
-            Level::Poly(poly, rows) if last || poly.positions.is_empty() => {
+            Level::Poly(poly, rows) if last || poly.positions.is_empty() || rows.overflowed() => {
                 return Ok(Refined::poly(poly, finish(rows, fvar)));
+            }
+            Level::Mesh(_, rows) if rows.overflowed() => {
+                return Ok(Refined::poly(PolyMesh::default(), finish(rows, fvar)));
             }
             Level::Poly(poly, child_rows) => {
                 rows = child_rows;
@@ -929,6 +932,12 @@ impl<V: Primvar> Primal<'_, '_, V> {
             channel.finish(&mesh, split, &value_rules, step, linear, sharp, mode, joint);
         }
         let tags = self.sharp.tags;
+        if rows.overflowed() {
+            // A stencil build past its limit is refused whatever follows: stop before the
+            // child's topology, which would take as much memory again (in wasm, more than
+            // there is).
+            return (Level::Poly(PolyMesh::default(), rows), None);
+        }
         if !self.last {
             let child = S::child_mesh(&mesh, positions);
             let child_tags = tags.map(|t| S::child_tags(&mesh, &child, t));

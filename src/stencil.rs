@@ -252,6 +252,27 @@ impl Weights for StencilSum<'_> {
     }
 }
 
+impl Stencils {
+    /// `capacity` rows after these, at most `limit` entries.
+    fn with_capacity_within(&self, capacity: usize, limit: usize) -> Self {
+        // A child row combines a few parent rows and is longer than they are, by fewer
+        // entries at each level (the supports converge): 1.5 times the parent's average and 6
+        // more is above what Catmull-Clark and Loop make at levels 1-3 (6.25 per row at level
+        // 1, 10.6 at level 2), so the arrays are not moved while they grow; `into_table` gives
+        // back what is left.
+        let average = self.indices.len().checked_div(self.spans.len()).unwrap_or(1);
+        let entries = capacity.saturating_mul(average + average / 2 + 6).min(limit);
+        Stencils {
+            spans: Vec::with_capacity(capacity),
+            indices: Vec::with_capacity(entries),
+            weights: Vec::with_capacity(entries),
+            num_control: self.num_control,
+            limit,
+            overflowed: self.overflowed,
+        }
+    }
+}
+
 impl Primvar for Stencils {
     type Sum<'a> = StencilSum<'a>;
 
@@ -271,21 +292,7 @@ impl Primvar for Stencils {
     }
 
     fn with_capacity(&self, capacity: usize) -> Self {
-        // A child row combines a few parent rows and is longer than they are, by fewer
-        // entries at each level (the supports converge): 1.5 times the parent's average and 6
-        // more is above what Catmull-Clark and Loop make at levels 1-3 (6.25 per row at level
-        // 1, 10.6 at level 2), so the arrays are not moved while they grow; `into_table` gives
-        // back what is left.
-        let average = self.indices.len().checked_div(self.spans.len()).unwrap_or(1);
-        let entries = capacity.saturating_mul(average + average / 2 + 6).min(self.limit);
-        Stencils {
-            spans: Vec::with_capacity(capacity),
-            indices: Vec::with_capacity(entries),
-            weights: Vec::with_capacity(entries),
-            num_control: self.num_control,
-            limit: self.limit,
-            overflowed: self.overflowed,
-        }
+        self.with_capacity_within(capacity, self.limit)
     }
 
     fn push<'a>(&mut self, sum: &mut StencilSum<'a>, rule: impl FnOnce(&mut StencilSum<'a>)) {
@@ -324,6 +331,10 @@ impl Primvar for Stencils {
         self.spans.is_empty()
     }
 
+    fn overflowed(&self) -> bool {
+        self.overflowed
+    }
+
     /// The three rows of a vertex in one pass: the masks are merged per parent vertex first, so
     /// that each parent row is read once and feeds three sums; the rows share their control
     /// vertices (a weight is kept as 0 where one mask does not reach a vertex the others do),
@@ -335,8 +346,9 @@ impl Primvar for Stencils {
     ) -> (Self, [Self; 2]) {
         let n = mesh.num_vertices();
         // The tangent rows share the position rows' entries: they keep weights only (see
-        // `Stencils::into_shared_weights`).
-        let positions = self.with_capacity(n);
+        // `Stencils::into_shared_weights`). An entry is then an index and three weights, 16
+        // bytes where the limit counts 8: half as many fit.
+        let positions = self.with_capacity_within(n, self.limit / 2);
         let weights_only = || Stencils {
             indices: Vec::new(),
             weights: Vec::with_capacity(positions.weights.capacity()),
@@ -621,9 +633,9 @@ impl StencilTable {
         positions: &mut [f32],
         normals: &mut [f32],
     ) -> Result<()> {
-        let Some([t1, t2]) = self.tangent_weights() else {
+        if self.tangent_weights.is_none() {
             return self.evaluate(control, 3, positions);
-        };
+        }
         if normals.len() != positions.len() {
             return Err(Error::InvalidAttribute(format!(
                 "stencil table: normals has {} floats; expected 3 per output vertex ({} of them)",
@@ -632,16 +644,34 @@ impl StencilTable {
             )));
         }
         self.check_lengths(control.len(), 3, positions.len())?;
-        let control = pad(control);
-        debug_assert!(t1.len() == self.indices.len() && t2.len() == self.indices.len());
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
+        self.points_and_normals(&pad(control), None, positions, normals);
+        Ok(())
+    }
+
+    /// [`StencilTable::evaluate_with_normals`] of the rows `rows` lists (every row when `None`),
+    /// from control points padded by [`pad`]; a table without tangents writes positions only.
+    /// Lengths must be right, as the public functions check them.
+    pub(crate) fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        rows: Option<&[u32]>,
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        let Some([t1, t2]) = self.tangent_weights() else {
+            return self.points(control, rows, positions);
+        };
+        debug_assert!(t1.len() == self.indices.len() && t2.len() == self.indices.len());
+        debug_assert!(control.len() == self.num_control as usize);
         self.sum_rows::<2, _>(
+            rows,
             [Lanes::ZERO; 3],
             |[p, a, b], e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
                 // one per entry (`with_tangent_weights`), and entries name control vertices
-                // below `num_control`, which `check_lengths` made `control` hold.
+                // below `num_control`, which the callers made `control` hold.
                 let (x, w, w1, w2) = unsafe {
                     let c = *self.indices.get_unchecked(e) as usize;
                     let x = control.get_unchecked(c);
@@ -656,7 +686,6 @@ impl StencilTable {
                 normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
-        Ok(())
     }
 
     /// Writes into `out` the output values of `control` (`width` floats per control vertex:
@@ -700,6 +729,7 @@ impl StencilTable {
         let (control, _) = control.as_chunks::<N>();
         let (out, _) = out.as_chunks_mut::<N>();
         self.sum_rows::<4, _>(
+            None,
             [0.0f32; N],
             |sum, e| {
                 // SAFETY: as in `evaluate_xyz`.
@@ -716,16 +746,22 @@ impl StencilTable {
     /// that each entry is one 128-bit load and one multiply-add (wasm `simd128`, SSE) instead
     /// of three scalar ones; the padding costs one pass over the (much smaller) control array.
     fn evaluate_xyz(&self, control: &[f32], out: &mut [f32]) {
-        let padded = pad(control);
         let (out, _) = out.as_chunks_mut::<3>();
+        self.points(&pad(control), None, out);
+    }
+
+    /// The positions of the rows `rows` lists (every row when `None`) from control points
+    /// padded by [`pad`].
+    pub(crate) fn points(&self, control: &[[f32; 4]], rows: Option<&[u32]>, out: &mut [[f32; 3]]) {
         self.sum_rows::<4, _>(
+            rows,
             Lanes::ZERO,
             |sum, e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), and every control index of
                 // a table is below its `num_control` (the rows are built from the control
-                // vertices' own stencils); `check_lengths` made `control`, so `padded`, hold
-                // `num_control` points.
-                let (x, w) = unsafe { self.entry(&padded, e) };
+                // vertices' own stencils); the callers made `control` hold `num_control`
+                // points.
+                let (x, w) = unsafe { self.entry(control, e) };
                 *sum = sum.add_scaled(x, w);
             },
             |i, sum| out[i] = sum.xyz(),
@@ -745,8 +781,8 @@ impl StencilTable {
         }
     }
 
-    /// Sums every row, `add(sum, e)` for each of its entries `e` in order from `zero`, and
-    /// hands each finished sum to `store(row, sum)`.
+    /// Sums every row (or those `ids` lists, in its order), `add(sum, e)` for each of its
+    /// entries `e` in order from `zero`, and hands each finished sum to `store(row, sum)`.
     ///
     /// `N` rows are summed side by side: each sum is a chain of dependent additions, whose
     /// latency (not memory) bounds one row at a time; several chains in flight keep the adder
@@ -757,16 +793,19 @@ impl StencilTable {
     #[inline(always)]
     fn sum_rows<const N: usize, S: Copy>(
         &self,
+        ids: Option<&[u32]>,
         zero: S,
         mut add: impl FnMut(&mut S, usize),
         mut store: impl FnMut(usize, S),
     ) {
         let offsets = &self.offsets;
-        let rows = offsets.len() - 1;
+        let count = ids.map_or(offsets.len() - 1, <[u32]>::len);
+        let row = |k: usize| ids.map_or(k, |ids| ids[k] as usize);
         let mut i = 0;
-        while i + N <= rows {
-            let starts: [usize; N] = std::array::from_fn(|k| offsets[i + k] as usize);
-            let ends: [usize; N] = std::array::from_fn(|k| offsets[i + k + 1] as usize);
+        while i + N <= count {
+            let rows: [usize; N] = std::array::from_fn(|k| row(i + k));
+            let starts = rows.map(|r| offsets[r] as usize);
+            let ends = rows.map(|r| offsets[r + 1] as usize);
             let common = (0..N).map(|k| ends[k] - starts[k]).min().unwrap_or(0);
             let mut sums = [zero; N];
             for j in 0..common {
@@ -778,14 +817,15 @@ impl StencilTable {
                 (start + common..end).for_each(|e| add(sum, e));
             }
             for (k, sum) in sums.into_iter().enumerate() {
-                store(i + k, sum);
+                store(rows[k], sum);
             }
             i += N;
         }
-        for i in i..rows {
+        for k in i..count {
+            let r = row(k);
             let mut sum = zero;
-            (offsets[i] as usize..offsets[i + 1] as usize).for_each(|e| add(&mut sum, e));
-            store(i, sum);
+            (offsets[r] as usize..offsets[r + 1] as usize).for_each(|e| add(&mut sum, e));
+            store(r, sum);
         }
     }
 
@@ -866,7 +906,7 @@ impl Slot {
 }
 
 /// Points of three floats as four (the fourth 0), for 128-bit loads.
-fn pad(points: &[f32]) -> Vec<[f32; 4]> {
+pub(crate) fn pad(points: &[f32]) -> Vec<[f32; 4]> {
     points.as_chunks::<3>().0.iter().map(|&[x, y, z]| [x, y, z, 0.0]).collect()
 }
 
@@ -876,27 +916,33 @@ fn pad(points: &[f32]) -> Vec<[f32; 4]> {
 /// three into scalar multiply-adds, which V8 ran as such (three times the arithmetic of a point).
 /// Multiply then add, lane by lane, as the scalar loop: the sums are bit-identical.
 #[derive(Clone, Copy)]
-struct Lanes(
+pub(crate) struct Lanes(
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))] core::arch::wasm32::v128,
     #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))] [f32; 4],
 );
 
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 impl Lanes {
-    const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
+    pub(crate) const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
 
     /// `self + x * w`.
     #[inline(always)]
-    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
-        use core::arch::wasm32::{f32x4_add, f32x4_mul, f32x4_splat, v128, v128_load};
+    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        use core::arch::wasm32::{v128, v128_load};
         // SAFETY: `x` is 16 readable bytes; wasm loads need no alignment.
-        let x = unsafe { v128_load(x.as_ptr().cast::<v128>()) };
-        Lanes(f32x4_add(self.0, f32x4_mul(x, f32x4_splat(w))))
+        self.add_lanes(Lanes(unsafe { v128_load(x.as_ptr().cast::<v128>()) }), w)
+    }
+
+    /// `self + x * w`, `x` in registers.
+    #[inline(always)]
+    pub(crate) fn add_lanes(self, x: Lanes, w: f32) -> Lanes {
+        use core::arch::wasm32::{f32x4_add, f32x4_mul, f32x4_splat};
+        Lanes(f32x4_add(self.0, f32x4_mul(x.0, f32x4_splat(w))))
     }
 
     /// The first three lanes.
     #[inline(always)]
-    fn xyz(self) -> [f32; 3] {
+    pub(crate) fn xyz(self) -> [f32; 3] {
         use core::arch::wasm32::f32x4_extract_lane;
         [
             f32x4_extract_lane::<0>(self.0),
@@ -908,21 +954,27 @@ impl Lanes {
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 impl Lanes {
-    const ZERO: Lanes = Lanes([0.0; 4]);
+    pub(crate) const ZERO: Lanes = Lanes([0.0; 4]);
 
     /// `self + x * w`.
     #[inline(always)]
-    fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        self.add_lanes(Lanes(*x), w)
+    }
+
+    /// `self + x * w`, `x` in registers.
+    #[inline(always)]
+    pub(crate) fn add_lanes(self, x: Lanes, w: f32) -> Lanes {
         let mut sum = self.0;
-        for k in 0..4 {
-            sum[k] += x[k] * w;
+        for (s, x) in sum.iter_mut().zip(x.0) {
+            *s += x * w;
         }
         Lanes(sum)
     }
 
     /// The first three lanes.
     #[inline(always)]
-    fn xyz(self) -> [f32; 3] {
+    pub(crate) fn xyz(self) -> [f32; 3] {
         [self.0[0], self.0[1], self.0[2]]
     }
 }

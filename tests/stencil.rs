@@ -13,8 +13,8 @@ use subsurf::io::obj::read_obj_with_tags;
 use subsurf::scheme::{predict, predict_counts, stencil_table_mesh, subdivide_with_attributes};
 use subsurf::shapes::{cube, grid, grid_with_hole, torus};
 use subsurf::{
-    stencil_table, subdivide_with_tags, Boundary, Corner, Crease, Error, HalfEdgeMesh, Options,
-    PolyMesh, Scheme, StencilTable, Tags,
+    stencil_table, subdivide_with_tags, Boundary, Corner, Crease, Error, Evaluator, HalfEdgeMesh,
+    Options, PolyMesh, Scheme, StencilTable, Tags,
 };
 
 /// A small deterministic generator (xorshift), for deformations and channel values.
@@ -251,6 +251,76 @@ fn opensubdiv_shapes() {
     assert!(shapes > 90, "only {shapes} shapes ran");
 }
 
+/// Unit normals within 5e-4 rad of each other (or both zero). The two tangents are sums whose
+/// weights cancel, rounded to f32 in a different order by a patch and by a row: on OpenSubdiv's
+/// shapes each is up to about 1e-4 rad from the same sums in f64 (catmark_car, catmark_bishop).
+fn assert_same_directions(got: &[f32], want: &[f32], what: &str) {
+    for (v, (a, b)) in got.chunks_exact(3).zip(want.chunks_exact(3)).enumerate() {
+        let [a, b] = [a, b].map(|n| n.iter().map(|&x| f64::from(x)).collect::<Vec<_>>());
+        let dot: f64 = (0..3).map(|k| a[k] * b[k]).sum();
+        let cross =
+            [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        let sin = cross.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let zero = |n: &[f64]| n.iter().all(|&x| x == 0.0);
+        let same =
+            if zero(&a) || zero(&b) { zero(&a) && zero(&b) } else { dot > 0.0 && sin <= 5e-4 };
+        assert!(same, "{what}: normal {v}: {a:?} against {b:?}");
+    }
+}
+
+/// At the limit, Catmull-Clark's regular faces are evaluated as bicubic patches
+/// (`Evaluator::patch_vertices`); the others keep their rows. Both must give the table's own
+/// positions and normals: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the
+/// patches off), at levels 1 to 3, with and without normals, and on a torus, whose faces are
+/// all regular.
+#[test]
+fn regular_patches_give_the_tables_points_and_normals() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/osd");
+    let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    let mut meshes = vec![("torus".to_string(), torus(12, 9, 2.0, 0.5))];
+    for path in files.iter().filter(|p| p.extension().is_some_and(|e| e == "obj")) {
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        if name.starts_with("catmark") {
+            let obj = read_obj_with_tags(&std::fs::read_to_string(path).unwrap()).unwrap();
+            meshes.push((name, obj.mesh));
+        }
+    }
+    let (mut patched, mut with_patches) = (0, 0);
+    for (name, mesh) in &meshes {
+        let Ok(base) = HalfEdgeMesh::from_poly(mesh) else { continue };
+        let scale = diagonal(&mesh.positions);
+        for levels in 1..=3 {
+            for normals in [false, true] {
+                let options =
+                    Options { limit: true, normals, ..Options::new(Scheme::CatmullClark, levels) };
+                let Ok(evaluator) = Evaluator::new(&base, &[], &options, &Tags::default()) else {
+                    continue;
+                };
+                let n = 3 * evaluator.num_vertices();
+                let (mut points, mut normal) = (vec![0.0; n], vec![0.0; n]);
+                let (mut want, mut want_normal) = (vec![0.0; n], vec![0.0; n]);
+                let out = normals.then_some(&mut normal[..]);
+                evaluator.evaluate(&mesh.positions, &mut points, out).unwrap();
+                let table = evaluator.table();
+                table.evaluate_with_normals(&mesh.positions, &mut want, &mut want_normal).unwrap();
+                let what = format!("{name} level {levels} normals {normals}");
+                assert_close(&points, &want, scale, &what);
+                if normals {
+                    assert_same_directions(&normal, &want_normal, &what);
+                }
+                patched += evaluator.patch_vertices();
+                with_patches += usize::from(evaluator.patch_vertices() > 0);
+                if name == "torus" {
+                    assert_eq!(evaluator.patch_vertices(), evaluator.num_vertices(), "{what}");
+                }
+            }
+        }
+    }
+    eprintln!("{with_patches} evaluators with patches, {patched} vertices from patches");
+    assert!(with_patches > 30, "only {with_patches} evaluators had patches");
+}
+
 #[test]
 fn a_table_from_a_built_mesh_is_the_same() {
     let mesh = torus(6, 5, 2.0, 0.5);
@@ -273,6 +343,26 @@ fn a_table_from_a_built_mesh_is_the_same() {
         table.bytes(),
         4 * (table.num_stencils() as u64 + 1) + 8 * sizes.iter().sum::<usize>() as u64
     );
+}
+
+/// A limit table with tangents takes 16 bytes per entry (an index and three weights), and
+/// `max_bytes` counts them so: the table is built at exactly its size and refused one byte below
+/// (it once counted 8 and could grow to twice the limit, past wasm's memory).
+#[test]
+fn max_bytes_counts_a_limit_table_with_its_tangents() {
+    let base = HalfEdgeMesh::from_poly(&torus(8, 6, 2.0, 0.5)).unwrap();
+    let tags = Tags::default();
+    let options = Options { limit: true, normals: true, ..Options::new(Scheme::CatmullClark, 2) };
+    let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
+    let table = evaluator.table();
+    assert!(table.tangent_weights().is_some());
+    let entries = table.indices().len() as u64;
+    assert_eq!(table.bytes(), 4 * (table.num_stencils() as u64 + 1) + 16 * entries);
+    let just = Options { max_bytes: table.bytes(), ..options.clone() };
+    assert_eq!(Evaluator::new(&base, &[], &just, &tags).unwrap().table(), table);
+    let below = Options { max_bytes: table.bytes() - 1, ..options.clone() };
+    let err = Evaluator::new(&base, &[], &below, &tags).unwrap_err();
+    assert!(matches!(&err, Error::TooLarge(m) if m.contains("stencil table")), "{err}");
 }
 
 #[test]

@@ -12,6 +12,8 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { torus } from '../../bench/torus.mjs';
+
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const pkgDir = join(root, 'pkg');
 let checks = 0;
@@ -297,6 +299,19 @@ check('subsurf/webgpu in Node', () => {
   assert.equal(typeof webgpu.createGpuEvaluator, 'function');
   assert.match(webgpu.stencilShader({ normals: true }), /@compute @workgroup_size\(64\)/);
   assert.throws(() => webgpu.createGpuEvaluator(undefined, {}, 0), /must be a GPUDevice.*requestGpuDevice/);
+});
+
+// A limit table past maxBytes is refused before it takes the memory: the 1M-quad torus at level
+// 2 once built its level's mesh after its stencils had overflowed, and reserved 16-byte entries
+// against a limit counted in 8-byte ones: more than wasm's 4 GB, and the instance aborted
+// ("RuntimeError: unreachable"). The error comes back and the module works on.
+check('a limit table past maxBytes is refused without running out of memory', () => {
+  const base = new node.BaseMesh(torus(1000, 1000, 1, 0.25, false));
+  for (const normals of [false, true]) {
+    assert.throws(() => base.evaluator({ levels: 2, limit: true, normals }), /stencil table of more than \d+ bytes.*maxBytes/);
+  }
+  base.free();
+  assert.equal(node.subdivide(cube(), { levels: 1, limit: true, normals: true }).normals.length, 3 * 26);
 });
 
 console.log(`pkg_smoke: ok (${checks} checks; subsurf ${pkg.version}, subsurf_bg.wasm ${bytes.length} bytes)`);
