@@ -16,7 +16,7 @@
 //! vertices, creases, boundaries) keep their stencil rows.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::Lanes;
+use crate::stencil::{Lanes, Normals};
 
 /// The regular faces of a base mesh refined `levels` times, and for each the output vertices
 /// its patch gives (each output vertex belongs to at most one patch).
@@ -121,6 +121,22 @@ impl RegularPatches {
             params[*slot as usize] = ij;
             *slot += 1;
         }
+        // In `i` order within a patch, so that each sample's row sums are made once.
+        for p in 0..controls.len() {
+            let range = offsets[p] as usize..offsets[p + 1] as usize;
+            let mut entries: Vec<_> = points[range.clone()]
+                .iter()
+                .copied()
+                .zip(params[range.clone()].iter().copied())
+                .collect();
+            entries.sort_unstable_by_key(|&(v, [i, j])| (i, j, v));
+            for ((v, ij), (point, param)) in
+                entries.into_iter().zip(points[range.clone()].iter_mut().zip(&mut params[range]))
+            {
+                *point = v;
+                *param = ij;
+            }
+        }
         let basis = (0..=steps).map(|k| bspline(k as f32 / steps as f32)).collect();
         Some(RegularPatches { controls, offsets, points, params, rest, basis })
     }
@@ -141,30 +157,30 @@ impl RegularPatches {
         &self,
         control: &[[f32; 4]],
         positions: &mut [[f32; 3]],
-        mut normals: Option<&mut [[f32; 3]]>,
+        normals: Option<&mut [[f32; 3]]>,
     ) {
-        let samples = self.basis.len();
-        // Per sample `i` along `u`, each control row's value and `u`-derivative there: shared
-        // by the patch's points with that `i`.
-        let mut along = vec![[Lanes::ZERO; 8]; samples];
+        let mut normals = normals.map(Normals::new);
         let zero = [0.0f32; 4];
         for (p, ids) in self.controls.iter().enumerate() {
-            let points =
-                ids.map(|i| Lanes::ZERO.add_scaled(control.get(i as usize).unwrap_or(&zero), 1.0));
-            for ([b, d], sums) in self.basis.iter().zip(along.iter_mut()) {
-                for (r, row) in points.chunks_exact(4).enumerate() {
-                    let (mut value, mut slope) = (Lanes::ZERO, Lanes::ZERO);
-                    for (c, &x) in row.iter().enumerate() {
-                        value = value.add_lanes(x, b[c]);
-                        slope = slope.add_lanes(x, d[c]);
-                    }
-                    sums[r] = value;
-                    sums[4 + r] = slope;
-                }
-            }
+            let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
+            // Each control row's value and `u`-derivative at the current sample `i`: the
+            // patch's points come in `i` order, so each is made once for all its `j`.
+            let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 8]);
             let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
             for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
-                let sums = &along[i as usize];
+                if i as usize != at {
+                    at = i as usize;
+                    let [b, d] = &self.basis[at];
+                    for (r, row) in points.chunks_exact(4).enumerate() {
+                        let (mut value, mut slope) = (Lanes::ZERO, Lanes::ZERO);
+                        for (c, &x) in row.iter().enumerate() {
+                            value = value.add_lanes(x, b[c]);
+                            slope = slope.add_lanes(x, d[c]);
+                        }
+                        sums[r] = value;
+                        sums[4 + r] = slope;
+                    }
+                }
                 let [b, d] = &self.basis[j as usize];
                 let (mut point, mut du, mut dv) = (Lanes::ZERO, Lanes::ZERO, Lanes::ZERO);
                 for r in 0..4 {
@@ -174,8 +190,8 @@ impl RegularPatches {
                 }
                 let v = v as usize;
                 positions[v] = point.xyz();
-                if let Some(normals) = normals.as_deref_mut() {
-                    normals[v] = crate::limit::normal(du.xyz(), dv.xyz());
+                if let Some(normals) = normals.as_mut() {
+                    normals.push(v, du, dv);
                 }
             }
         }

@@ -162,3 +162,22 @@ fn evaluator_errors_are_clear_and_it_keeps_working() {
         object(&[("levels", JsValue::from_f64(3.0)), ("maxBytes", JsValue::from_f64(1000.0))]);
     assert_mentions(&thrown(base.evaluator(&huge).map(|_| ())), &["maxBytes"]);
 }
+
+/// On a torus every face is regular, so the evaluator gives every point from a bicubic patch
+/// and its normals four at a time in lanes (`Evaluator::patch_vertices`): the same surface and
+/// normals as `subdivide`, which takes the limit masks.
+#[wasm_bindgen_test]
+fn an_evaluator_on_regular_faces_gives_subdivide() {
+    let torus = subsurf::shapes::torus(12, 9, 2.0, 0.5);
+    let mesh = js_mesh(&torus.positions, &torus.indices, Some(&torus.face_sizes));
+    let base = BaseMesh::new(&mesh).unwrap();
+    for levels in [1.0, 2.0] {
+        let options = limit_options(levels, true, true);
+        let mut evaluator = base.evaluator(&options).unwrap();
+        let plain = ok(subdivide(&mesh, &options));
+        let frame = ok(evaluator
+            .evaluate(&Float32Array::from(&torus.positions[..]).into(), &JsValue::UNDEFINED));
+        assert!(within(&f32s(&frame, "positions"), &f32s(&plain, "positions"), 1e-5));
+        assert!(within(&f32s(&frame, "normals"), &f32s(&plain, "normals"), 1e-4));
+    }
+}
