@@ -223,7 +223,7 @@ impl Evaluator {
         if let Some(patches) = &self.patches {
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
-            let rest = Some(patches.rest());
+            let rest = patches.rest();
             let mut normals = normals.map(|n| n.as_chunks_mut::<3>().0);
             match normals.as_deref_mut() {
                 Some(normals) => self.table.points_and_normals(&control, rest, positions, normals),

@@ -646,17 +646,17 @@ impl StencilTable {
         self.check_lengths(control.len(), 3, positions.len())?;
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
-        self.points_and_normals(&pad(control), None, positions, normals);
+        self.points_and_normals(&pad(control), AllRows(self.num_stencils()), positions, normals);
         Ok(())
     }
 
-    /// [`StencilTable::evaluate_with_normals`] of the rows `rows` lists (every row when `None`),
+    /// [`StencilTable::evaluate_with_normals`] of the rows `rows` names,
     /// from control points padded by [`pad`]; a table without tangents writes positions only.
     /// Lengths must be right, as the public functions check them.
     pub(crate) fn points_and_normals(
         &self,
         control: &[[f32; 4]],
-        rows: Option<&[u32]>,
+        rows: impl RowIds,
         positions: &mut [[f32; 3]],
         normals: &mut [[f32; 3]],
     ) {
@@ -729,7 +729,7 @@ impl StencilTable {
         let (control, _) = control.as_chunks::<N>();
         let (out, _) = out.as_chunks_mut::<N>();
         self.sum_rows::<4, _>(
-            None,
+            AllRows(self.num_stencils()),
             [0.0f32; N],
             |sum, e| {
                 // SAFETY: as in `evaluate_xyz`.
@@ -747,12 +747,12 @@ impl StencilTable {
     /// of three scalar ones; the padding costs one pass over the (much smaller) control array.
     fn evaluate_xyz(&self, control: &[f32], out: &mut [f32]) {
         let (out, _) = out.as_chunks_mut::<3>();
-        self.points(&pad(control), None, out);
+        self.points(&pad(control), AllRows(self.num_stencils()), out);
     }
 
-    /// The positions of the rows `rows` lists (every row when `None`) from control points
+    /// The positions of the rows `rows` names from control points
     /// padded by [`pad`].
-    pub(crate) fn points(&self, control: &[[f32; 4]], rows: Option<&[u32]>, out: &mut [[f32; 3]]) {
+    pub(crate) fn points(&self, control: &[[f32; 4]], rows: impl RowIds, out: &mut [[f32; 3]]) {
         self.sum_rows::<4, _>(
             rows,
             Lanes::ZERO,
@@ -781,7 +781,7 @@ impl StencilTable {
         }
     }
 
-    /// Sums every row (or those `ids` lists, in its order), `add(sum, e)` for each of its
+    /// Sums the rows `ids` names, in its order, `add(sum, e)` for each of its
     /// entries `e` in order from `zero`, and hands each finished sum to `store(row, sum)`.
     ///
     /// `N` rows are summed side by side: each sum is a chain of dependent additions, whose
@@ -793,14 +793,14 @@ impl StencilTable {
     #[inline(always)]
     fn sum_rows<const N: usize, S: Copy>(
         &self,
-        ids: Option<&[u32]>,
+        ids: impl RowIds,
         zero: S,
         mut add: impl FnMut(&mut S, usize),
         mut store: impl FnMut(usize, S),
     ) {
         let offsets = &self.offsets;
-        let count = ids.map_or(offsets.len() - 1, <[u32]>::len);
-        let row = |k: usize| ids.map_or(k, |ids| ids[k] as usize);
+        let count = ids.count();
+        let row = |k: usize| ids.row(k);
         let mut i = 0;
         while i + N <= count {
             let rows: [usize; N] = std::array::from_fn(|k| row(i + k));
@@ -841,6 +841,41 @@ impl StencilTable {
                 }
             }
         }
+    }
+}
+
+/// Which rows of a table a sum runs over: all of them, or a list (those no patch gives, see
+/// [`crate::patches`]). A type each, so that the loop over all rows has no list to read.
+pub(crate) trait RowIds: Copy {
+    fn count(self) -> usize;
+    fn row(self, k: usize) -> usize;
+}
+
+/// The first `n` rows, in order.
+#[derive(Clone, Copy)]
+pub(crate) struct AllRows(pub usize);
+
+impl RowIds for AllRows {
+    #[inline(always)]
+    fn count(self) -> usize {
+        self.0
+    }
+
+    #[inline(always)]
+    fn row(self, k: usize) -> usize {
+        k
+    }
+}
+
+impl RowIds for &[u32] {
+    #[inline(always)]
+    fn count(self) -> usize {
+        self.len()
+    }
+
+    #[inline(always)]
+    fn row(self, k: usize) -> usize {
+        self[k] as usize
     }
 }
 
