@@ -211,7 +211,6 @@ struct Seams {
 }
 
 impl Seams {
-    #[inline(never)]
     fn find(mesh: &HalfEdgeMesh, indices: &[u32], mode: ModeRules) -> Self {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         let value_at = |x: u32, v: u32| {
@@ -348,7 +347,6 @@ impl FVarLevel {
     /// `values` (`width` floats each), under `mode`: its values become one per vertex and
     /// sibling. OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues`, including the order in
     /// which it visits vertices where that changes a result (which boundary edges are linear).
-    #[inline(never)]
     pub(crate) fn base(
         mesh: &HalfEdgeMesh,
         values: &[f32],
@@ -569,7 +567,6 @@ impl FVarLevel {
     /// the vertices), so its children and the rules that read it need no face-varying care
     /// ([`FVarLevel::child_topology`], `interpolate`). Found from the seams, which are sparse,
     /// rather than by reading every corner.
-    #[inline(never)]
     pub(crate) fn cells_near_seams(&self, mesh: &HalfEdgeMesh) -> Vec<u32> {
         let mut cells = Vec::new();
         for &[v, ..] in &self.several {
@@ -588,7 +585,6 @@ impl FVarLevel {
 
     /// The next level's topology (no values yet) after `split` of `mesh`: OpenSubdiv's
     /// `FVarRefinement::applyRefinement` for a uniform split.
-    #[inline(never)]
     pub(crate) fn child_topology(
         &self,
         mesh: &HalfEdgeMesh,
