@@ -8,15 +8,18 @@
 //! same patches for its regular faces). A vertex of level `L` on such a face sits at parameters
 //! `(i, j) / 2^L`, and its limit point is the patch's value there.
 //!
-//! Why: a limit stencil row with tangents reads about 14 entries of 16 bytes, more than 225
-//! bytes per point, so a frame of limit points and normals from the table is bound by memory
-//! bandwidth (about 23 ns per point at this project's benchmark machines' 10.7 GB/s). A patch
-//! reads 64 bytes of control indices for all its points, and the B-spline weights at the
+//! Why: a limit row reads about 14 entries per point (8 bytes each, more than 110 per point
+//! with the output), so a frame of limit points from the table is bound by memory bandwidth. A
+//! patch reads 64 bytes of control indices for all its points, and the B-spline weights at the
 //! sample parameters are shared by every patch. The points of the other faces (extraordinary
 //! vertices, creases, boundaries) keep their stencil rows.
+//!
+//! Not with normals: a patch's tangents are sums whose weights cancel, rounded to f32 otherwise
+//! than the rows' (up to 1e-4 rad apart on OpenSubdiv's `catmark_car` at level 3), and the GPU
+//! evaluator, which runs the rows, must give the CPU evaluator's normals to 1e-5.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::{Lanes, Normals};
+use crate::stencil::Lanes;
 
 /// The regular faces of a base mesh refined `levels` times, and for each the output vertices
 /// its patch gives (each output vertex belongs to at most one patch).
@@ -32,8 +35,8 @@ pub(crate) struct RegularPatches {
     params: Vec<[u8; 2]>,
     /// The output vertices no patch gives, ascending: their stencil rows give them.
     rest: Vec<u32>,
-    /// The cubic B-spline basis and its derivative at each sample `k / 2^levels`.
-    basis: Vec<[[f32; 4]; 2]>,
+    /// The cubic B-spline basis at each sample `k / 2^levels`.
+    basis: Vec<[f32; 4]>,
 }
 
 impl RegularPatches {
@@ -151,64 +154,40 @@ impl RegularPatches {
         &self.rest
     }
 
-    /// Writes each patch's points (and, given `normals`, the unit normals `∂u × ∂v`, which
-    /// point as the faces are wound) from the padded control points.
-    pub(crate) fn evaluate(
-        &self,
-        control: &[[f32; 4]],
-        positions: &mut [[f32; 3]],
-        normals: Option<&mut [[f32; 3]]>,
-    ) {
-        let mut normals = normals.map(Normals::new);
+    /// Writes each patch's points from the padded control points.
+    pub(crate) fn evaluate(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
         let zero = [0.0f32; 4];
         for (p, ids) in self.controls.iter().enumerate() {
             let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
-            // Each control row's value and `u`-derivative at the current sample `i`: the
-            // patch's points come in `i` order, so each is made once for all its `j`.
-            let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 8]);
+            // Each control row's value at the current sample `i`: the patch's points come in
+            // `i` order, so each is made once for all its `j`.
+            let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 4]);
             let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
             for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
                 if i as usize != at {
                     at = i as usize;
-                    let [b, d] = &self.basis[at];
-                    for (r, row) in points.chunks_exact(4).enumerate() {
-                        let (mut value, mut slope) = (Lanes::ZERO, Lanes::ZERO);
-                        for (c, &x) in row.iter().enumerate() {
-                            value = value.add_lanes(x, b[c]);
-                            slope = slope.add_lanes(x, d[c]);
-                        }
-                        sums[r] = value;
-                        sums[4 + r] = slope;
+                    let b = &self.basis[at];
+                    for (sum, row) in sums.iter_mut().zip(points.chunks_exact(4)) {
+                        *sum = row.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
                     }
                 }
-                let [b, d] = &self.basis[j as usize];
-                let (mut point, mut du, mut dv) = (Lanes::ZERO, Lanes::ZERO, Lanes::ZERO);
-                for r in 0..4 {
-                    point = point.add_lanes(sums[r], b[r]);
-                    du = du.add_lanes(sums[4 + r], b[r]);
-                    dv = dv.add_lanes(sums[r], d[r]);
-                }
-                let v = v as usize;
-                positions[v] = point.xyz();
-                if let Some(normals) = normals.as_mut() {
-                    normals.push(v, du, dv);
-                }
+                let b = &self.basis[j as usize];
+                let point = sums.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
+                positions[v as usize] = point.xyz();
             }
         }
     }
 }
 
-/// The uniform cubic B-spline basis and its derivative at `t` in `[0, 1]`.
-fn bspline(t: f32) -> [[f32; 4]; 2] {
+/// The uniform cubic B-spline basis at `t` in `[0, 1]`.
+fn bspline(t: f32) -> [f32; 4] {
     let s = 1.0 - t;
-    let value = [
+    [
         s * s * s / 6.0,
         (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
         (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
         t * t * t / 6.0,
-    ];
-    let slope = [-0.5 * s * s, 1.5 * t * t - 2.0 * t, -1.5 * t * t + t + 0.5, 0.5 * t * t];
-    [value, slope]
+    ]
 }
 
 /// The parameters of child `k` of a square with corners `c` (as a quad's child at its corner

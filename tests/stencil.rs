@@ -268,11 +268,11 @@ fn assert_same_directions(got: &[f32], want: &[f32], what: &str) {
     }
 }
 
-/// At the limit, Catmull-Clark's regular faces are evaluated as bicubic patches
+/// At the limit without normals, Catmull-Clark's regular faces are evaluated as bicubic patches
 /// (`Evaluator::patch_vertices`); the others keep their rows. Both must give the table's own
-/// positions and normals: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the
-/// patches off), at levels 1 to 3, with and without normals, and on a torus, whose faces are
-/// all regular.
+/// positions: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the patches
+/// off), at levels 1 to 3, and on a torus, whose faces are all regular. With normals the rows
+/// give every point, as the GPU evaluator does.
 #[test]
 fn regular_patches_give_the_tables_points_and_normals() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/osd");
@@ -311,14 +311,16 @@ fn regular_patches_give_the_tables_points_and_normals() {
                 }
                 patched += evaluator.patch_vertices();
                 with_patches += usize::from(evaluator.patch_vertices() > 0);
+                // With normals, the rows give every point (see `Evaluator::patch_vertices`).
+                let all = if normals { 0 } else { evaluator.num_vertices() };
                 if name == "torus" {
-                    assert_eq!(evaluator.patch_vertices(), evaluator.num_vertices(), "{what}");
+                    assert_eq!(evaluator.patch_vertices(), all, "{what}");
                 }
             }
         }
     }
     eprintln!("{with_patches} evaluators with patches, {patched} vertices from patches");
-    assert!(with_patches > 30, "only {with_patches} evaluators had patches");
+    assert!(with_patches > 15, "only {with_patches} evaluators had patches");
 }
 
 #[test]
