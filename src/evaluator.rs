@@ -44,7 +44,8 @@ pub struct Evaluator {
     at_build: OnceLock<(Vec<f32>, Option<Vec<f32>>)>,
     source: NormalSource,
     /// Catmull-Clark limit points on regular faces, evaluated as bicubic patches rather than
-    /// from their (much larger) stencil rows; the table's rows give the others.
+    /// from their (much larger) stencil rows; the table's rows give the others. Only without
+    /// normals (see `Evaluator::new`).
     patches: Option<RegularPatches>,
 }
 
@@ -224,7 +225,7 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        if let Some(patches) = self.patches.as_ref().filter(|_| normals.is_none()) {
+        if let Some(patches) = &self.patches {
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
             self.table.points(&control, patches.rest(), positions);

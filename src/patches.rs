@@ -125,16 +125,16 @@ impl RegularPatches {
             *slot += 1;
         }
         // In `i` order within a patch, so that each sample's row sums are made once.
+        let mut entries = Vec::new();
         for p in 0..controls.len() {
             let range = offsets[p] as usize..offsets[p + 1] as usize;
-            let mut entries: Vec<_> = points[range.clone()]
-                .iter()
-                .copied()
-                .zip(params[range.clone()].iter().copied())
-                .collect();
+            entries.clear();
+            entries.extend(
+                points[range.clone()].iter().copied().zip(params[range.clone()].iter().copied()),
+            );
             entries.sort_unstable_by_key(|&(v, [i, j])| (i, j, v));
-            for ((v, ij), (point, param)) in
-                entries.into_iter().zip(points[range.clone()].iter_mut().zip(&mut params[range]))
+            for (&(v, ij), (point, param)) in
+                entries.iter().zip(points[range.clone()].iter_mut().zip(&mut params[range]))
             {
                 *point = v;
                 *param = ij;

@@ -633,9 +633,9 @@ impl StencilTable {
         positions: &mut [f32],
         normals: &mut [f32],
     ) -> Result<()> {
-        if self.tangent_weights.is_none() {
+        let Some([t1, t2]) = self.tangent_weights() else {
             return self.evaluate(control, 3, positions);
-        }
+        };
         if normals.len() != positions.len() {
             return Err(Error::InvalidAttribute(format!(
                 "stencil table: normals has {} floats; expected 3 per output vertex ({} of them)",
@@ -644,34 +644,17 @@ impl StencilTable {
             )));
         }
         self.check_lengths(control.len(), 3, positions.len())?;
+        let control = pad(control);
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
-        self.points_and_normals(&pad(control), AllRows(self.num_stencils()), positions, normals);
-        Ok(())
-    }
-
-    /// [`StencilTable::evaluate_with_normals`] of the rows `rows` names,
-    /// from control points padded by [`pad`]; a table without tangents writes positions only.
-    /// Lengths must be right, as the public functions check them.
-    pub(crate) fn points_and_normals(
-        &self,
-        control: &[[f32; 4]],
-        rows: impl RowIds,
-        positions: &mut [[f32; 3]],
-        normals: &mut [[f32; 3]],
-    ) {
-        let Some([t1, t2]) = self.tangent_weights() else {
-            return self.points(control, rows, positions);
-        };
         debug_assert!(t1.len() == self.indices.len() && t2.len() == self.indices.len());
-        debug_assert!(control.len() == self.num_control as usize);
         self.sum_rows::<2, _>(
-            rows,
+            AllRows(self.num_stencils()),
             [Lanes::ZERO; 3],
             |[p, a, b], e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
                 // one per entry (`with_tangent_weights`), and entries name control vertices
-                // below `num_control`, which the callers made `control` hold.
+                // below `num_control`, which `check_lengths` made `control` hold.
                 let (x, w, w1, w2) = unsafe {
                     let c = *self.indices.get_unchecked(e) as usize;
                     let x = control.get_unchecked(c);
@@ -686,6 +669,7 @@ impl StencilTable {
                 normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
+        Ok(())
     }
 
     /// Writes into `out` the output values of `control` (`width` floats per control vertex:
@@ -956,6 +940,14 @@ pub(crate) struct Lanes(
     #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))] [f32; 4],
 );
 
+impl Lanes {
+    /// `self + x * w`.
+    #[inline(always)]
+    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        self.add_lanes(Lanes::load(x), w)
+    }
+}
+
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 impl Lanes {
     pub(crate) const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
@@ -966,12 +958,6 @@ impl Lanes {
         use core::arch::wasm32::{v128, v128_load};
         // SAFETY: `x` is 16 readable bytes; wasm loads need no alignment.
         Lanes(unsafe { v128_load(x.as_ptr().cast::<v128>()) })
-    }
-
-    /// `self + x * w`.
-    #[inline(always)]
-    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
-        self.add_lanes(Lanes::load(x), w)
     }
 
     /// `self + x * w`, `x` in registers.
@@ -1001,12 +987,6 @@ impl Lanes {
     #[inline(always)]
     pub(crate) fn load(x: &[f32; 4]) -> Lanes {
         Lanes(*x)
-    }
-
-    /// `self + x * w`.
-    #[inline(always)]
-    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
-        self.add_lanes(Lanes::load(x), w)
     }
 
     /// `self + x * w`, `x` in registers.
