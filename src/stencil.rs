@@ -449,7 +449,7 @@ impl LimitSum {
     }
 
     /// Adds up the rows of `level` that `sources` name, weighted; returns how many control
-    /// vertices the row has (`touched[..count]`, ascending).
+    /// vertices the row has (`touched[..count]`, in the order first reached, as `append_row`).
     fn gather(&mut self, level: &Stencils) -> usize {
         let stamp = self.stamp;
         let sums = &mut self.sums[..];
@@ -459,18 +459,20 @@ impl LimitSum {
             let (controls, weights) = level.row(parent as usize);
             let w = Slot::masks(w);
             for (&c, &cw) in controls.iter().zip(weights) {
-                if sums[c as usize].add(w, cw, stamp) {
-                    touched[count] = c;
+                debug_assert!((c as usize) < sums.len() && count < touched.len());
+                // SAFETY: as in `StencilSum::gather`: rows name control vertices (below the
+                // length of `sums` and `touched`), each listed once per row.
+                if unsafe { sums.get_unchecked_mut(c as usize) }.add(w, cw, stamp) {
+                    unsafe { *touched.get_unchecked_mut(count) = c };
                     count += 1;
                 }
             }
         }
-        touched[..count].sort_unstable();
         count
     }
 }
 
-/// Appends one limit row of `touched` (ascending) with the three sums of each to `a` (entries
+/// Appends one limit row of `touched` with the three sums of each to `a` (entries
 /// and the position's weights) and to `b`, `c` (the tangents' weights on the same entries); a
 /// control vertex whose three sums cancelled is left out.
 fn emit(touched: &[u32], sums: &[Slot], [a, b, c]: [&mut Stencils; 3]) {
