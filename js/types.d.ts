@@ -182,6 +182,7 @@ export interface SubdivideResult extends PolygonMesh {
 export interface StencilArrays {
   /** One more than there are output vertices; `offsets[0]` is 0. */
   offsets: Uint32Array;
+  /** The control vertex of each entry: a row names each of its control vertices once, in no set order (as OpenSubdiv's tables). */
   indices: Uint32Array;
   weights: Float32Array;
   /** With normals: the two limit tangents' weights on the same entries; the normal is their cross product, normalised. */
