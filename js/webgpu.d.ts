@@ -41,9 +41,12 @@ export interface StencilArrays {
   indices: Uint32Array;
   weights: Float32Array;
   /**
-   * The weights of the two limit tangents, parallel to `weights`. When present, the evaluator
-   * also computes normals: cross(t1, t2) normalised, (0, 0, 0) where that length is 0 or not
-   * finite.
+   * The weights of the two limit tangents, parallel to `weights`, summing to 0 in each row (as
+   * a derivative's do; every table of `Evaluator.stencils()` and OpenSubdiv's
+   * `LimitStencilTable` are so). When present, the evaluator also computes normals:
+   * cross(t1, t2) normalised, (0, 0, 0) where that length is 0 or not finite. Each tangent is
+   * summed as sum(w * (v - v0)), v0 the row's first control point: equal to sum(w * v) for
+   * such weights, and f32 keeps the digits the normal needs.
    */
   tangentWeights?: [Float32Array, Float32Array];
   /** The base mesh's vertex count (Evaluator.stencils() gives it). */

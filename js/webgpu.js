@@ -322,13 +322,24 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
   }
   let end = offsets[i + 1u];
   var p = vec3<f32>(0.0);
-${normals ? '  var t1 = vec3<f32>(0.0);\n  var t2 = vec3<f32>(0.0);\n' : ''}  for (var k = offsets[i]; k < end; k++) {
+${normals ? `  var t1 = vec3<f32>(0.0);
+  var t2 = vec3<f32>(0.0);
+  // A tangent's weights sum to 0, so sum(w * v) = sum(w * (v - origin)) for any point origin:
+  // with the row's first control point, each term is a local difference and f32 keeps the
+  // digits the normal needs (as the CPU evaluator sums them).
+  var origin = vec3<f32>(0.0);
+  if (offsets[i] < end) {
+    let c0 = 3u * indices[offsets[i]];
+    origin = vec3<f32>(control[c0], control[c0 + 1u], control[c0 + 2u]);
+  }
+` : ''}  for (var k = offsets[i]; k < end; k++) {
     let c = 3u * indices[k];
     let v = vec3<f32>(control[c], control[c + 1u], control[c + 2u]);
     p += ${weight} * v;
 ${normals ? (merged
-    ? '    t1 += weights[3u * k + 1u] * v;\n    t2 += weights[3u * k + 2u] * v;\n'
-    : '    t1 += tangents1[k] * v;\n    t2 += tangents2[k] * v;\n') : ''}  }
+    ? '    let w1 = weights[3u * k + 1u];\n    let w2 = weights[3u * k + 2u];\n'
+    : '    let w1 = tangents1[k];\n    let w2 = tangents2[k];\n')
+    + '    t1 += w1 * (v - origin);\n    t2 += w2 * (v - origin);\n' : ''}  }
   positions[3u * i] = p.x;
   positions[3u * i + 1u] = p.y;
   positions[3u * i + 2u] = p.z;

@@ -14,9 +14,11 @@
 //! sample parameters are shared by every patch. The points of the other faces (extraordinary
 //! vertices, creases, boundaries) keep their stencil rows.
 //!
-//! Not with normals: a patch's tangents are sums whose weights cancel, rounded to f32 otherwise
-//! than the rows' (up to 1e-4 rad apart on OpenSubdiv's `catmark_car` at level 3), and the GPU
-//! evaluator, which runs the rows, must give the CPU evaluator's normals to 1e-5.
+//! With normals the tangents are `∂u` and `∂v` of the patch, summed over the control points'
+//! differences from one of them (`Σ w (x - x0)`, as the table's rows sum theirs, see
+//! `StencilTable::points_and_normals`): the tangent weights sum to 0, and summed on the points
+//! themselves f32 rounded the patches' and the rows' normals up to 1e-4 rad apart, where the
+//! GPU evaluator (which runs the rows) must give the CPU evaluator's normals to 1e-5.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::stencil::Lanes;
@@ -35,8 +37,8 @@ pub(crate) struct RegularPatches {
     params: Vec<[u8; 2]>,
     /// The output vertices no patch gives, ascending: their stencil rows give them.
     rest: Vec<u32>,
-    /// The cubic B-spline basis at each sample `k / 2^levels`.
-    basis: Vec<[f32; 4]>,
+    /// The cubic B-spline basis and its derivative at each sample `k / 2^levels`.
+    basis: Vec<[[f32; 4]; 2]>,
 }
 
 impl RegularPatches {
@@ -166,28 +168,79 @@ impl RegularPatches {
             for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
                 if i as usize != at {
                     at = i as usize;
-                    let b = &self.basis[at];
+                    let [b, _] = &self.basis[at];
                     for (sum, row) in sums.iter_mut().zip(points.chunks_exact(4)) {
                         *sum = row.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
                     }
                 }
-                let b = &self.basis[j as usize];
+                let [b, _] = &self.basis[j as usize];
                 let point = sums.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
                 positions[v as usize] = point.xyz();
             }
         }
     }
+
+    /// Writes each patch's points and unit normals (`∂u × ∂v`, which point as the faces are
+    /// wound; [`crate::limit::normal`]) from the padded control points. The sums run on the
+    /// points' differences from the patch's control point (1, 1) (see the module's notes), and
+    /// the positions add it back (the basis sums to 1).
+    pub(crate) fn evaluate_with_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        let zero = [0.0f32; 4];
+        for (p, ids) in self.controls.iter().enumerate() {
+            let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
+            let origin = points[5];
+            let points = points.map(|x| x.sub(origin));
+            // Each control row's value and `u`-derivative at the current sample `i`, made once
+            // for all its `j` (the points come in `i` order).
+            let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 8]);
+            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
+            for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
+                if i as usize != at {
+                    at = i as usize;
+                    let [b, d] = &self.basis[at];
+                    for (r, row) in points.chunks_exact(4).enumerate() {
+                        let (mut value, mut slope) = (Lanes::ZERO, Lanes::ZERO);
+                        for (c, &x) in row.iter().enumerate() {
+                            value = value.add_lanes(x, b[c]);
+                            slope = slope.add_lanes(x, d[c]);
+                        }
+                        sums[r] = value;
+                        sums[4 + r] = slope;
+                    }
+                }
+                let [b, d] = &self.basis[j as usize];
+                let (mut point, mut du, mut dv) = (origin, Lanes::ZERO, Lanes::ZERO);
+                for r in 0..4 {
+                    point = point.add_lanes(sums[r], b[r]);
+                    du = du.add_lanes(sums[4 + r], b[r]);
+                    dv = dv.add_lanes(sums[r], d[r]);
+                }
+                let v = v as usize;
+                if let (Some(position), Some(normal)) = (positions.get_mut(v), normals.get_mut(v)) {
+                    *position = point.xyz();
+                    *normal = crate::limit::normal(du.xyz(), dv.xyz());
+                }
+            }
+        }
+    }
 }
 
-/// The uniform cubic B-spline basis at `t` in `[0, 1]`.
-fn bspline(t: f32) -> [f32; 4] {
+/// The uniform cubic B-spline basis and its derivative at `t` in `[0, 1]`.
+fn bspline(t: f32) -> [[f32; 4]; 2] {
     let s = 1.0 - t;
-    [
+    let value = [
         s * s * s / 6.0,
         (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
         (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
         t * t * t / 6.0,
-    ]
+    ];
+    let slope = [-0.5 * s * s, 1.5 * t * t - 2.0 * t, -1.5 * t * t + t + 0.5, 0.5 * t * t];
+    [value, slope]
 }
 
 /// The parameters of child `k` of a square with corners `c` (as a quad's child at its corner

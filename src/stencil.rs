@@ -197,16 +197,17 @@ impl StencilSum<'_> {
         let mut count = self.count;
         for (&c, &w) in controls.iter().zip(weights) {
             let product = w * weight;
-            debug_assert!((c as usize) < sums.len() && count < touched.len());
+            debug_assert!((c as usize) < sums.len());
             // SAFETY: a row names control vertices only (below `num_control`, the length of
-            // `sums` and of `touched`), and lists each at most once, so `count` stays below
-            // `touched.len()`. Without these two bounds checks per entry, the build of the
+            // `sums` and of `touched`), and lists each at most once, so `count` is below
+            // `touched.len()` when a control vertex is listed. Without these two bounds checks per entry, the build of the
             // horse's level-2 Catmull-Clark table took 14 % less time in wasm.
             let entry = unsafe { sums.get_unchecked_mut(c as usize) };
             if entry.1 == stamp {
                 entry.0 += product;
             } else {
                 *entry = (product, stamp);
+                debug_assert!(count < touched.len());
                 unsafe { *touched.get_unchecked_mut(count) = c };
                 count += 1;
             }
@@ -459,10 +460,11 @@ impl LimitSum {
             let (controls, weights) = level.row(parent as usize);
             let w = Slot::masks(w);
             for (&c, &cw) in controls.iter().zip(weights) {
-                debug_assert!((c as usize) < sums.len() && count < touched.len());
+                debug_assert!((c as usize) < sums.len());
                 // SAFETY: as in `StencilSum::gather`: rows name control vertices (below the
                 // length of `sums` and `touched`), each listed once per row.
                 if unsafe { sums.get_unchecked_mut(c as usize) }.add(w, cw, stamp) {
+                    debug_assert!(count < touched.len());
                     unsafe { *touched.get_unchecked_mut(count) = c };
                     count += 1;
                 }
@@ -668,9 +670,9 @@ impl StencilTable {
         positions: &mut [f32],
         normals: &mut [f32],
     ) -> Result<()> {
-        let Some([t1, t2]) = self.tangent_weights() else {
+        if self.tangent_weights().is_none() {
             return self.evaluate(control, 3, positions);
-        };
+        }
         if normals.len() != positions.len() {
             return Err(Error::InvalidAttribute(format!(
                 "stencil table: normals has {} floats; expected 3 per output vertex ({} of them)",
@@ -682,29 +684,61 @@ impl StencilTable {
         let control = pad(control);
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
+        self.points_and_normals(&control, AllRows(self.num_stencils()), positions, normals);
+        Ok(())
+    }
+
+    /// The positions and unit normals of `rows` from padded control points (a table with
+    /// tangent weights; `control` holds `num_control` points, `positions` and `normals` one per
+    /// stencil).
+    ///
+    /// A tangent's weights sum to 0, so its sum cancels: at level 6 of a unit torus the
+    /// tangents are about 1/64 of the coordinates, and summed as they are, f32 loses the digits
+    /// the normals need to agree across evaluators (the regular patches, the GPU's rows) to
+    /// 1e-5. Summed as `Σ w (x - x0)`, with `x0` the row's first control point (equal, as the
+    /// weights sum to 0), each term is a local difference and the sum keeps its digits. The
+    /// shader in `js/webgpu.js` sums the same way; the patches take a control point of theirs.
+    /// (Adding back `(Σ w) x0` for the weights' rounding brought the error back: that sum
+    /// cancels as the original did.)
+    pub(crate) fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        rows: impl RowIds,
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        let Some([t1, t2]) = self.tangent_weights() else {
+            return self.points(control, rows, positions);
+        };
         debug_assert!(t1.len() == self.indices.len() && t2.len() == self.indices.len());
+        let first = |r: usize| {
+            let (start, end) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+            let c = if start < end { self.indices[start] as usize } else { usize::MAX };
+            [Lanes::ZERO, Lanes::ZERO, Lanes::ZERO, control.get(c).map_or(Lanes::ZERO, Lanes::load)]
+        };
         self.sum_rows::<2, _>(
-            AllRows(self.num_stencils()),
-            [Lanes::ZERO; 3],
-            |[p, a, b], e| {
+            rows,
+            first,
+            |[p, a, b, x0], e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
                 // one per entry (`with_tangent_weights`), and entries name control vertices
-                // below `num_control`, which `check_lengths` made `control` hold.
+                // below `num_control`, which the callers made `control` hold.
                 let (x, w, w1, w2) = unsafe {
                     let c = *self.indices.get_unchecked(e) as usize;
                     let x = control.get_unchecked(c);
                     (x, *self.weights.get_unchecked(e), *t1.get_unchecked(e), *t2.get_unchecked(e))
                 };
-                *p = p.add_scaled(x, w);
-                *a = a.add_scaled(x, w1);
-                *b = b.add_scaled(x, w2);
+                let x = Lanes::load(x);
+                *p = p.add_lanes(x, w);
+                let d = x.sub(*x0);
+                *a = a.add_lanes(d, w1);
+                *b = b.add_lanes(d, w2);
             },
-            |i, [p, a, b]| {
+            |i, [p, a, b, _]| {
                 positions[i] = p.xyz();
                 normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
-        Ok(())
     }
 
     /// Writes into `out` the output values of `control` (`width` floats per control vertex:
@@ -749,7 +783,7 @@ impl StencilTable {
         let (out, _) = out.as_chunks_mut::<N>();
         self.sum_rows::<4, _>(
             AllRows(self.num_stencils()),
-            [0.0f32; N],
+            |_| [0.0f32; N],
             |sum, e| {
                 // SAFETY: as in `evaluate_xyz`.
                 let (x, w) = unsafe { self.entry(control, e) };
@@ -774,7 +808,7 @@ impl StencilTable {
     pub(crate) fn points(&self, control: &[[f32; 4]], rows: impl RowIds, out: &mut [[f32; 3]]) {
         self.sum_rows::<4, _>(
             rows,
-            Lanes::ZERO,
+            |_| Lanes::ZERO,
             |sum, e| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), and every control index of
                 // a table is below its `num_control` (the rows are built from the control
@@ -813,7 +847,7 @@ impl StencilTable {
     fn sum_rows<const N: usize, S: Copy>(
         &self,
         ids: impl RowIds,
-        zero: S,
+        start: impl Fn(usize) -> S,
         mut add: impl FnMut(&mut S, usize),
         mut store: impl FnMut(usize, S),
     ) {
@@ -826,7 +860,7 @@ impl StencilTable {
             let starts = rows.map(|r| offsets[r] as usize);
             let ends = rows.map(|r| offsets[r + 1] as usize);
             let common = (0..N).map(|k| ends[k] - starts[k]).min().unwrap_or(0);
-            let mut sums = [zero; N];
+            let mut sums = rows.map(&start);
             for j in 0..common {
                 for (sum, &start) in sums.iter_mut().zip(&starts) {
                     add(sum, start + j);
@@ -842,7 +876,7 @@ impl StencilTable {
         }
         for k in i..count {
             let r = row(k);
-            let mut sum = zero;
+            let mut sum = start(r);
             (offsets[r] as usize..offsets[r + 1] as usize).for_each(|e| add(&mut sum, e));
             store(r, sum);
         }
@@ -995,6 +1029,12 @@ impl Lanes {
         Lanes(unsafe { v128_load(x.as_ptr().cast::<v128>()) })
     }
 
+    /// `self - x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn sub(self, x: Lanes) -> Lanes {
+        Lanes(core::arch::wasm32::f32x4_sub(self.0, x.0))
+    }
+
     /// `self + x * w`, `x` in registers.
     #[inline(always)]
     pub(crate) fn add_lanes(self, x: Lanes, w: f32) -> Lanes {
@@ -1022,6 +1062,12 @@ impl Lanes {
     #[inline(always)]
     pub(crate) fn load(x: &[f32; 4]) -> Lanes {
         Lanes(*x)
+    }
+
+    /// `self - x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn sub(self, x: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|k| self.0[k] - x.0[k]))
     }
 
     /// `self + x * w`, `x` in registers.

@@ -253,10 +253,8 @@ fn opensubdiv_shapes() {
     assert!(shapes > 90, "only {shapes} shapes ran");
 }
 
-/// Unit normals within 5e-4 rad of each other (or both zero). The two tangents are sums whose
-/// weights cancel, rounded to f32 in a different order by a patch and by a row: on OpenSubdiv's
-/// shapes each is up to about 1e-4 rad from the same sums in f64 (catmark_car, catmark_bishop).
-fn assert_same_directions(got: &[f32], want: &[f32], what: &str) {
+/// Unit normals within `tolerance` rad of each other (or both zero).
+fn assert_same_directions(got: &[f32], want: &[f32], tolerance: f64, what: &str) {
     for (v, (a, b)) in got.chunks_exact(3).zip(want.chunks_exact(3)).enumerate() {
         let [a, b] = [a, b].map(|n| n.iter().map(|&x| f64::from(x)).collect::<Vec<_>>());
         let dot: f64 = (0..3).map(|k| a[k] * b[k]).sum();
@@ -265,16 +263,19 @@ fn assert_same_directions(got: &[f32], want: &[f32], what: &str) {
         let sin = cross.iter().map(|x| x * x).sum::<f64>().sqrt();
         let zero = |n: &[f64]| n.iter().all(|&x| x == 0.0);
         let same =
-            if zero(&a) || zero(&b) { zero(&a) && zero(&b) } else { dot > 0.0 && sin <= 5e-4 };
-        assert!(same, "{what}: normal {v}: {a:?} against {b:?}");
+            if zero(&a) || zero(&b) { zero(&a) && zero(&b) } else { dot > 0.0 && sin <= tolerance };
+        assert!(same, "{what}: normal {v}: {a:?} against {b:?} ({sin:.2e} rad apart)");
     }
 }
 
-/// At the limit without normals, Catmull-Clark's regular faces are evaluated as bicubic patches
+/// At the limit, Catmull-Clark's regular faces are evaluated as bicubic patches
 /// (`Evaluator::patch_vertices`); the others keep their rows. Both must give the table's own
-/// positions: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the patches
-/// off), at levels 1 to 3, and on a torus, whose faces are all regular. With normals the rows
-/// give every point, as the GPU evaluator does.
+/// positions and normals: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the
+/// patches off), at levels 1 to 3, with and without normals, and on a torus, whose faces are
+/// all regular. The normals must agree to 1e-5 rad, what the GPU evaluator (which runs the
+/// rows) must meet against the CPU's. With both tangent sums taken on differences of points
+/// they are within 1e-6 rad; summed on the points, f32 put them 1.2e-4 rad apart on
+/// `catmark_car` at level 3.
 #[test]
 fn regular_patches_give_the_tables_points_and_normals() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/osd");
@@ -309,20 +310,18 @@ fn regular_patches_give_the_tables_points_and_normals() {
                 let what = format!("{name} level {levels} normals {normals}");
                 assert_close(&points, &want, scale, &what);
                 if normals {
-                    assert_same_directions(&normal, &want_normal, &what);
+                    assert_same_directions(&normal, &want_normal, 1e-5, &what);
                 }
                 patched += evaluator.patch_vertices();
                 with_patches += usize::from(evaluator.patch_vertices() > 0);
-                // With normals, the rows give every point (see `Evaluator::patch_vertices`).
-                let all = if normals { 0 } else { evaluator.num_vertices() };
                 if name == "torus" {
-                    assert_eq!(evaluator.patch_vertices(), all, "{what}");
+                    assert_eq!(evaluator.patch_vertices(), evaluator.num_vertices(), "{what}");
                 }
             }
         }
     }
     eprintln!("{with_patches} evaluators with patches, {patched} vertices from patches");
-    assert!(with_patches > 15, "only {with_patches} evaluators had patches");
+    assert!(with_patches > 30, "only {with_patches} evaluators had patches");
 }
 
 #[test]

@@ -163,15 +163,15 @@ fn evaluator_errors_are_clear_and_it_keeps_working() {
     assert_mentions(&thrown(base.evaluator(&huge).map(|_| ())), &["maxBytes"]);
 }
 
-/// On a torus every face is regular, so at the limit without normals the evaluator gives every
-/// point from a bicubic patch (`Evaluator::patch_vertices`); with normals from the rows. Both
-/// are `subdivide`'s surface, which takes the limit masks.
+/// On a torus every face is regular, so at the limit the evaluator gives every point (and its
+/// normal) from a bicubic patch (`Evaluator::patch_vertices`): `subdivide`'s surface, which
+/// takes the limit masks.
 #[wasm_bindgen_test]
 fn an_evaluator_on_regular_faces_gives_subdivide() {
     let torus = subsurf::shapes::torus(12, 9, 2.0, 0.5);
     let mesh = js_mesh(&torus.positions, &torus.indices, Some(&torus.face_sizes));
     let base = BaseMesh::new(&mesh).unwrap();
-    for (levels, normals) in [(1.0, false), (2.0, false), (2.0, true)] {
+    for (levels, normals) in [(1.0, false), (2.0, false), (1.0, true), (2.0, true)] {
         let options = limit_options(levels, true, normals);
         let mut evaluator = base.evaluator(&options).unwrap();
         let plain = ok(subdivide(&mesh, &options));

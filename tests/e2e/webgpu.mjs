@@ -88,7 +88,10 @@ function pageHelpers() {
     for (let i = 0; i < control.length; i++) control[i] = centre[i % 3] + random() * 2 - 1;
     return control;
   }
-  /** The reference: the contract's sums, in f32, in index order. */
+  /**
+   * The reference: the contract's sums, in f32, in index order; the tangents, whose weights sum
+   * to 0, on differences from the row's first control point, as the contract says.
+   */
   function cpuEvaluate({ offsets, indices, weights, tangentWeights }, control) {
     const n = offsets.length - 1;
     const positions = new Float32Array(3 * n);
@@ -96,14 +99,17 @@ function pageHelpers() {
     const [w1, w2] = tangentWeights ?? [];
     for (let i = 0; i < n; i++) {
       let px = 0, py = 0, pz = 0, ax = 0, ay = 0, az = 0, bx = 0, by = 0, bz = 0;
+      const first = offsets[i] < offsets[i + 1] ? 3 * indices[offsets[i]] : -1;
+      const [ox, oy, oz] = first < 0 ? [0, 0, 0] : [control[first], control[first + 1], control[first + 2]];
       for (let k = offsets[i]; k < offsets[i + 1]; k++) {
         const c = 3 * indices[k];
         const x = control[c], y = control[c + 1], z = control[c + 2];
         const w = weights[k];
         px = f(px + f(w * x)); py = f(py + f(w * y)); pz = f(pz + f(w * z));
         if (normals) {
-          ax = f(ax + f(w1[k] * x)); ay = f(ay + f(w1[k] * y)); az = f(az + f(w1[k] * z));
-          bx = f(bx + f(w2[k] * x)); by = f(by + f(w2[k] * y)); bz = f(bz + f(w2[k] * z));
+          const dx = f(x - ox), dy = f(y - oy), dz = f(z - oz);
+          ax = f(ax + f(w1[k] * dx)); ay = f(ay + f(w1[k] * dy)); az = f(az + f(w1[k] * dz));
+          bx = f(bx + f(w2[k] * dx)); by = f(by + f(w2[k] * dy)); bz = f(bz + f(w2[k] * dz));
         }
       }
       positions[3 * i] = px; positions[3 * i + 1] = py; positions[3 * i + 2] = pz;
@@ -242,16 +248,20 @@ async function run() {
     exact('output buffers: usage VERTEX | STORAGE | COPY_SRC, 12 bytes per vertex', [known.usage, ...known.sizes], [true, 108, 108, 9, 4]);
 
     // ---- normals that must be (0, 0, 0): parallel tangents, a cross product overflowing f32
-    // (1e30 x 1e30), an empty row; and tangents of 1e5 whose normal is (0, 0, 1)
+    // (1e30 x 1e30), an empty row; and tangents of 1e5 whose normal is (0, 0, 1). Tangent
+    // weights sum to 0, as the contract asks.
     const zero = await page.evaluate(async () => {
       const table = {
-        offsets: new Uint32Array([0, 2, 4, 6, 6]),
-        indices: new Uint32Array([0, 1, 0, 1, 0, 1]),
-        weights: new Float32Array([0.5, 0.5, 0.5, 0.5, 0.5, 0.5]),
-        tangentWeights: [new Float32Array([1, 1, 1, 0, 1e-25, 0]), new Float32Array([1, 1, 0, 1, 0, 1e-25])],
+        offsets: new Uint32Array([0, 2, 5, 8, 8]),
+        indices: new Uint32Array([2, 3, 2, 0, 1, 2, 0, 1]),
+        weights: new Float32Array([0.5, 0.5, 0, 0.5, 0.5, 0, 0.5, 0.5]),
+        tangentWeights: [
+          new Float32Array([-1, 1, -1, 1, 0, -1e-25, 1e-25, 0]),
+          new Float32Array([-2, 2, -1, 0, 1, -1e-25, 0, 1e-25]),
+        ],
       };
-      const control = new Float32Array([1e30, 0, 0, 0, 1e30, 0]);
-      const gpu = W.createGpuEvaluator(device, table, 2);
+      const control = new Float32Array([1e30, 0, 0, 0, 1e30, 0, 0, 0, 0, 1, 2, 3]);
+      const gpu = W.createGpuEvaluator(device, table, 4);
       gpu.evaluate(control);
       const result = await gpu.readBack();
       gpu.destroy();
