@@ -21,7 +21,7 @@
 //! GPU evaluator (which runs the rows) must give the CPU evaluator's normals to 1e-5.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::Lanes;
+use crate::stencil::{Lanes, Normals};
 
 /// The regular faces of a base mesh refined `levels` times, and for each the output vertices
 /// its patch gives (each output vertex belongs to at most one patch).
@@ -181,7 +181,7 @@ impl RegularPatches {
     }
 
     /// Writes each patch's points and unit normals (`∂u × ∂v`, which point as the faces are
-    /// wound; [`crate::limit::normal`]) from the padded control points. The sums run on the
+    /// wound; [`crate::limit::normal`], four at a time) from the padded control points. The sums run on the
     /// points' differences from the patch's control point (1, 1) (see the module's notes), and
     /// the positions add it back (the basis sums to 1).
     pub(crate) fn evaluate_with_normals(
@@ -191,6 +191,7 @@ impl RegularPatches {
         normals: &mut [[f32; 3]],
     ) {
         let zero = [0.0f32; 4];
+        let mut normals = Normals::new(normals);
         for (p, ids) in self.controls.iter().enumerate() {
             let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
             let origin = points[5];
@@ -221,10 +222,10 @@ impl RegularPatches {
                     dv = dv.add_lanes(sums[r], d[r]);
                 }
                 let v = v as usize;
-                if let (Some(position), Some(normal)) = (positions.get_mut(v), normals.get_mut(v)) {
+                if let Some(position) = positions.get_mut(v) {
                     *position = point.xyz();
-                    *normal = crate::limit::normal(du.xyz(), dv.xyz());
                 }
+                normals.push(v, du, dv);
             }
         }
     }

@@ -1087,6 +1087,112 @@ impl Lanes {
     }
 }
 
+/// Unit normals of tangent pairs ([`crate::limit::normal`]), made four at a time: in wasm the
+/// four cross products, lengths and divisions run side by side in lanes, with exactly that
+/// function's f32 operations (the same results), and where its test sends one of them to f64
+/// all four go through it. The last ones are written when the batch is dropped.
+///
+/// For the patches ([`crate::patches`]): 1.1 times faster per point there. A table's rows
+/// keep one normal at a time, which measured 1.05 times faster than this in their loop.
+pub(crate) struct Normals<'o> {
+    out: &'o mut [[f32; 3]],
+    rows: [usize; 4],
+    tangents: [[Lanes; 2]; 4],
+    len: usize,
+}
+
+impl<'o> Normals<'o> {
+    pub(crate) fn new(out: &'o mut [[f32; 3]]) -> Self {
+        Normals { out, rows: [0; 4], tangents: [[Lanes::ZERO; 2]; 4], len: 0 }
+    }
+
+    /// The normal of `first × second` goes to `row`.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, row: usize, first: Lanes, second: Lanes) {
+        self.rows[self.len] = row;
+        self.tangents[self.len] = [first, second];
+        self.len += 1;
+        if self.len == 4 {
+            self.flush();
+        }
+    }
+
+    #[inline(always)]
+    fn flush(&mut self) {
+        let normals = four_normals(&self.tangents);
+        for (&row, normal) in self.rows.iter().zip(normals).take(self.len) {
+            if let Some(out) = self.out.get_mut(row) {
+                *out = normal;
+            }
+        }
+        self.len = 0;
+    }
+}
+
+impl Drop for Normals<'_> {
+    fn drop(&mut self) {
+        self.flush();
+    }
+}
+
+/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]).
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+#[inline(always)]
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+    use core::arch::wasm32::*;
+    // Four points' x, y and z, each in one register.
+    let split = |v: [v128; 4]| {
+        let low =
+            [i32x4_shuffle::<0, 4, 1, 5>(v[0], v[1]), i32x4_shuffle::<0, 4, 1, 5>(v[2], v[3])];
+        let high =
+            [i32x4_shuffle::<2, 6, 3, 7>(v[0], v[1]), i32x4_shuffle::<2, 6, 3, 7>(v[2], v[3])];
+        [
+            i32x4_shuffle::<0, 1, 4, 5>(low[0], low[1]),
+            i32x4_shuffle::<2, 3, 6, 7>(low[0], low[1]),
+            i32x4_shuffle::<0, 1, 4, 5>(high[0], high[1]),
+        ]
+    };
+    let [ax, ay, az] = split(tangents.map(|[a, _]| a.0));
+    let [bx, by, bz] = split(tangents.map(|[_, b]| b.0));
+    let (mul, sub, add) = (f32x4_mul, f32x4_sub, f32x4_add);
+    let nx = sub(mul(ay, bz), mul(az, by));
+    let ny = sub(mul(az, bx), mul(ax, bz));
+    let nz = sub(mul(ax, by), mul(ay, bx));
+    let length2 = add(add(mul(nx, nx), mul(ny, ny)), mul(nz, nz));
+    let a2 = add(add(mul(ax, ax), mul(ay, ay)), mul(az, az));
+    let b2 = add(add(mul(bx, bx), mul(by, by)), mul(bz, bz));
+    let scale2 = mul(a2, b2);
+    let good = v128_and(
+        v128_and(
+            f32x4_ge(length2, mul(f32x4_splat(0.01), scale2)),
+            f32x4_gt(length2, f32x4_splat(1e-30)),
+        ),
+        f32x4_lt(scale2, f32x4_splat(1e30)),
+    );
+    if !i32x4_all_true(good) {
+        return tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()));
+    }
+    let inverse = f32x4_div(f32x4_splat(1.0), f32x4_sqrt(length2));
+    let [x, y, z] = [nx, ny, nz].map(|c| Lanes(mul(c, inverse)));
+    let lanes = |v: Lanes| -> [f32; 4] {
+        [
+            f32x4_extract_lane::<0>(v.0),
+            f32x4_extract_lane::<1>(v.0),
+            f32x4_extract_lane::<2>(v.0),
+            f32x4_extract_lane::<3>(v.0),
+        ]
+    };
+    let [x, y, z] = [lanes(x), lanes(y), lanes(z)];
+    std::array::from_fn(|k| [x[k], y[k], z[k]])
+}
+
+/// [`crate::limit::normal`] of four tangent pairs.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+#[inline(always)]
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+    tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
