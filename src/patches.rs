@@ -156,53 +156,61 @@ impl RegularPatches {
         &self.rest
     }
 
+    /// Patch `p`'s 16 control points, from the padded control points.
+    fn control_points(&self, control: &[[f32; 4]], p: usize) -> [Lanes; 16] {
+        self.controls[p].map(|i| control.get(i as usize).map_or(Lanes::ZERO, Lanes::load))
+    }
+
+    /// Patch `p`'s output vertices with their samples `(i, j)`, in `i` order.
+    fn entries(&self, p: usize) -> impl Iterator<Item = (usize, [usize; 2])> + '_ {
+        let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
+        let params = self.params[range.clone()].iter().map(|&[i, j]| [i as usize, j as usize]);
+        self.points[range].iter().map(|&v| v as usize).zip(params)
+    }
+
     /// Writes each patch's points from the padded control points.
     pub(crate) fn evaluate(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
-        let zero = [0.0f32; 4];
-        for (p, ids) in self.controls.iter().enumerate() {
-            let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
+        for p in 0..self.controls.len() {
+            let points = self.control_points(control, p);
             // Each control row's value at the current sample `i`: the patch's points come in
             // `i` order, so each is made once for all its `j`.
             let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 4]);
-            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
-            for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
-                if i as usize != at {
-                    at = i as usize;
+            for (v, [i, j]) in self.entries(p) {
+                if i != at {
+                    at = i;
                     let [b, _] = &self.basis[at];
                     for (sum, row) in sums.iter_mut().zip(points.chunks_exact(4)) {
                         *sum = row.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
                     }
                 }
-                let [b, _] = &self.basis[j as usize];
+                let [b, _] = &self.basis[j];
                 let point = sums.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
-                positions[v as usize] = point.xyz();
+                positions[v] = point.xyz();
             }
         }
     }
 
     /// Writes each patch's points and unit normals (`∂u × ∂v`, which point as the faces are
-    /// wound; [`crate::limit::normal`], four at a time) from the padded control points. The sums run on the
-    /// points' differences from the patch's control point (1, 1) (see the module's notes), and
-    /// the positions add it back (the basis sums to 1).
+    /// wound; [`crate::limit::normal`], four at a time) from the padded control points. The
+    /// sums run on the points' differences from the patch's control point (1, 1) (see the
+    /// module's notes), and the positions add it back (the basis sums to 1).
     pub(crate) fn evaluate_with_normals(
         &self,
         control: &[[f32; 4]],
         positions: &mut [[f32; 3]],
         normals: &mut [[f32; 3]],
     ) {
-        let zero = [0.0f32; 4];
         let mut normals = Normals::new(normals);
-        for (p, ids) in self.controls.iter().enumerate() {
-            let points = ids.map(|i| Lanes::load(control.get(i as usize).unwrap_or(&zero)));
+        for p in 0..self.controls.len() {
+            let points = self.control_points(control, p);
             let origin = points[5];
             let points = points.map(|x| x.sub(origin));
             // Each control row's value and `u`-derivative at the current sample `i`, made once
             // for all its `j` (the points come in `i` order).
             let (mut at, mut sums) = (usize::MAX, [Lanes::ZERO; 8]);
-            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
-            for (&v, &[i, j]) in self.points[range.clone()].iter().zip(&self.params[range]) {
-                if i as usize != at {
-                    at = i as usize;
+            for (v, [i, j]) in self.entries(p) {
+                if i != at {
+                    at = i;
                     let [b, d] = &self.basis[at];
                     for (r, row) in points.chunks_exact(4).enumerate() {
                         let (mut value, mut slope) = (Lanes::ZERO, Lanes::ZERO);
@@ -214,14 +222,13 @@ impl RegularPatches {
                         sums[4 + r] = slope;
                     }
                 }
-                let [b, d] = &self.basis[j as usize];
+                let [b, d] = &self.basis[j];
                 let (mut point, mut du, mut dv) = (origin, Lanes::ZERO, Lanes::ZERO);
                 for r in 0..4 {
                     point = point.add_lanes(sums[r], b[r]);
                     du = du.add_lanes(sums[4 + r], b[r]);
                     dv = dv.add_lanes(sums[r], d[r]);
                 }
-                let v = v as usize;
                 if let Some(position) = positions.get_mut(v) {
                     *position = point.xyz();
                 }
