@@ -46,7 +46,8 @@ export interface StencilArrays {
    * `LimitStencilTable` are so). When present, the evaluator also computes normals:
    * cross(t1, t2) normalised, (0, 0, 0) where that length is 0 or not finite. Each tangent is
    * summed as sum(w * (v - v0)), v0 the row's first control point: equal to sum(w * v) for
-   * such weights, and f32 keeps the digits the normal needs.
+   * such weights, and f32 keeps the digits the normal needs. `createGpuEvaluator` throws, naming
+   * the row, when a row's sum passes 1e-4 of its weights' size.
    */
   tangentWeights?: [Float32Array, Float32Array];
   /** The base mesh's vertex count (Evaluator.stencils() gives it). */

@@ -426,6 +426,23 @@ function checkTable(stencils, numControlVertices) {
           'they must be parallel');
       }
     });
+    tangentWeights.forEach((array, j) => {
+      // The shader sums w * (v - v0), v0 the row's first control point: sum(w * v) only for
+      // weights that sum to 0, as a derivative's do (to rounding: 1e-6 of their size in our
+      // tables and OpenSubdiv's).
+      for (let i = 0; i < numVertices; i++) {
+        let sum = 0;
+        let size = 0;
+        for (let k = offsets[i]; k < offsets[i + 1]; k++) {
+          sum += array[k];
+          size += Math.abs(array[k]);
+        }
+        if (Math.abs(sum) > 1e-4 * size) {
+          throw new Error(`${where}: stencils.tangentWeights[${j}] sums to ${sum} in row ${i} (entries ${offsets[i]}..${offsets[i + 1]}); ` +
+            "tangent weights must sum to 0 in each row, as a limit tangent's do (Evaluator.stencils() and OpenSubdiv's LimitStencilTable are so)");
+        }
+      }
+    });
   }
   return { numVertices, offsets, indices, weights, tangentWeights };
 }

@@ -506,6 +506,8 @@ async function run() {
         offsetsEnd: await m(() => W.createGpuEvaluator(device, { ...table, offsets: table.offsets.subarray(0, 50) }, 10)),
         wrongType: await m(() => W.createGpuEvaluator(device, { ...table, indices: Array.from(table.indices) }, 10)),
         tangentsLength: await m(() => W.createGpuEvaluator(device, { ...table, tangentWeights: [table.weights, new Float32Array(3)] }, 10)),
+        // Positions' weights (summing to 1) given as a tangent's.
+        tangentsSum: await m(() => W.createGpuEvaluator(device, { ...table, tangentWeights: [table.weights, table.weights] }, 10)),
       };
       gpu.destroy();
       out.destroyed = await m(() => gpu.evaluate(new Float32Array(30)));
@@ -552,6 +554,7 @@ async function run() {
     says('offsets not ending at indices.length', errors.offsetsEnd, 'end at indices.length');
     says('indices not a Uint32Array', errors.wrongType, 'stencils.indices must be a Uint32Array');
     says('tangent weights not parallel', errors.tangentsLength, 'tangentWeights[1]', 'must be parallel');
+    says('tangent weights not summing to 0', errors.tangentsSum, 'tangentWeights[0]', 'in row', 'must sum to 0');
     says('destroyed evaluator: evaluate', errors.destroyed, 'destroyed', 'createGpuEvaluator');
     says('destroyed evaluator: readBack', errors.destroyedReadBack, 'destroyed');
     says('lost device: evaluate', errors.lost, 'device was lost', 'destroyed', 'requestGpuDevice()', 'evaluator.evaluate');
