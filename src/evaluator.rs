@@ -44,8 +44,8 @@ pub struct Evaluator {
     at_build: OnceLock<(Vec<f32>, Option<Vec<f32>>)>,
     source: NormalSource,
     /// Catmull-Clark limit points on regular faces, evaluated as bicubic patches rather than
-    /// from their (much larger) stencil rows; the table's rows give the others. Only without
-    /// normals (see `Evaluator::new`).
+    /// from their (much larger) stencil rows, with their normals; the table's rows give the
+    /// others (see `Evaluator::new`).
     patches: Option<RegularPatches>,
 }
 

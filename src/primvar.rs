@@ -522,14 +522,14 @@ pub trait Primvar: Sized {
     fn extend_zeroed(&mut self, count: usize);
     /// Overwrites value `i` with the one whose weights `rule` gives.
     fn set<'a>(&mut self, i: usize, sum: &mut Self::Sum<'a>, rule: impl FnOnce(&mut Self::Sum<'a>));
-    /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
-    /// return `with_capacity(0)` without running the rules.
     /// True when these are stencils that passed their size limit (the build is then refused;
     /// see `Stencils::into_table`): other data never is.
     fn overflowed(&self) -> bool {
         false
     }
 
+    /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
+    /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;
     /// These values as one vertex-numbered channel, when they are plain floats (so that a host
     /// may refine them in one walk of the rules with the positions, see [`pack_points`]).

@@ -65,6 +65,25 @@ impl Stencils {
         }
     }
 
+    /// `capacity` rows after these, at most `limit` entries.
+    fn with_capacity_within(&self, capacity: usize, limit: usize) -> Self {
+        // A child row combines a few parent rows and is longer than they are, by fewer
+        // entries at each level (the supports converge): 1.5 times the parent's average and 6
+        // more is above what Catmull-Clark and Loop make at levels 1-3 (6.25 per row at level
+        // 1, 10.6 at level 2), so the arrays are not moved while they grow; `into_table` gives
+        // back what is left.
+        let average = self.indices.len().checked_div(self.spans.len()).unwrap_or(1);
+        let entries = capacity.saturating_mul(average + average / 2 + 6).min(limit);
+        Stencils {
+            spans: Vec::with_capacity(capacity),
+            indices: Vec::with_capacity(entries),
+            weights: Vec::with_capacity(entries),
+            num_control: self.num_control,
+            limit,
+            overflowed: self.overflowed,
+        }
+    }
+
     /// The stencil of vertex `i`.
     fn row(&self, i: usize) -> (&[u32], &[f32]) {
         let [start, len] = self.spans[i];
@@ -200,8 +219,9 @@ impl StencilSum<'_> {
             debug_assert!((c as usize) < sums.len());
             // SAFETY: a row names control vertices only (below `num_control`, the length of
             // `sums` and of `touched`), and lists each at most once, so `count` is below
-            // `touched.len()` when a control vertex is listed. Without these two bounds checks per entry, the build of the
-            // horse's level-2 Catmull-Clark table took 14 % less time in wasm.
+            // `touched.len()` when a control vertex is listed. Without these two bounds checks
+            // per entry, the build of the horse's level-2 Catmull-Clark table took 14 % less
+            // time in wasm.
             let entry = unsafe { sums.get_unchecked_mut(c as usize) };
             if entry.1 == stamp {
                 entry.0 += product;
@@ -259,27 +279,6 @@ impl Weights for StencilSum<'_> {
     #[inline]
     fn end_group(&mut self, outer: f32) {
         self.scale = outer;
-    }
-}
-
-impl Stencils {
-    /// `capacity` rows after these, at most `limit` entries.
-    fn with_capacity_within(&self, capacity: usize, limit: usize) -> Self {
-        // A child row combines a few parent rows and is longer than they are, by fewer
-        // entries at each level (the supports converge): 1.5 times the parent's average and 6
-        // more is above what Catmull-Clark and Loop make at levels 1-3 (6.25 per row at level
-        // 1, 10.6 at level 2), so the arrays are not moved while they grow; `into_table` gives
-        // back what is left.
-        let average = self.indices.len().checked_div(self.spans.len()).unwrap_or(1);
-        let entries = capacity.saturating_mul(average + average / 2 + 6).min(limit);
-        Stencils {
-            spans: Vec::with_capacity(capacity),
-            indices: Vec::with_capacity(entries),
-            weights: Vec::with_capacity(entries),
-            num_control: self.num_control,
-            limit,
-            overflowed: self.overflowed,
-        }
     }
 }
 
@@ -803,8 +802,7 @@ impl StencilTable {
         self.points(&pad(control), AllRows(self.num_stencils()), out);
     }
 
-    /// The positions of the rows `rows` names from control points
-    /// padded by [`pad`].
+    /// The positions of the rows `rows` names from control points padded by [`pad`].
     pub(crate) fn points(&self, control: &[[f32; 4]], rows: impl RowIds, out: &mut [[f32; 3]]) {
         self.sum_rows::<4, _>(
             rows,
@@ -834,8 +832,8 @@ impl StencilTable {
         }
     }
 
-    /// Sums the rows `ids` names, in its order, `add(sum, e)` for each of its
-    /// entries `e` in order from `zero`, and hands each finished sum to `store(row, sum)`.
+    /// Sums the rows `ids` names, in its order: each from `start(row)`, `add(sum, e)` for each
+    /// of its entries `e` in order, and hands each finished sum to `store(row, sum)`.
     ///
     /// `N` rows are summed side by side: each sum is a chain of dependent additions, whose
     /// latency (not memory) bounds one row at a time; several chains in flight keep the adder
