@@ -10,7 +10,8 @@ use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::RegularPatches;
 use crate::scheme::build_stencils;
-use crate::stencil::{pad, StencilTable};
+use crate::shared_weights::SharedWeights;
+use crate::stencil::{pad, AllRows, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
 
@@ -47,6 +48,9 @@ pub struct Evaluator {
     /// from their (much larger) stencil rows, with their normals; the table's rows give the
     /// others (see `Evaluator::new`).
     patches: Option<RegularPatches>,
+    /// The weights of the rows a frame reads, each distinct list once, when the table has
+    /// tangents (see `crate::shared_weights`).
+    shared: Option<SharedWeights>,
 }
 
 impl Evaluator {
@@ -90,6 +94,17 @@ impl Evaluator {
                 RegularPatches::new(base, &build.mesh, levels, build.table.num_stencils())
             })
             .flatten();
+        let shared = match (source, build.table.tangent_weights()) {
+            (NormalSource::Tangents, Some([first, second])) => {
+                let rows: Vec<usize> = match &patches {
+                    Some(patches) => patches.rest().iter().map(|&r| r as usize).collect(),
+                    None => (0..build.table.num_stencils()).collect(),
+                };
+                let weights = [build.table.weights(), first, second];
+                SharedWeights::new(build.table.offsets(), weights, &rows)
+            }
+            _ => None,
+        };
         Ok(Evaluator {
             table: build.table,
             faces: build.mesh,
@@ -98,6 +113,7 @@ impl Evaluator {
             at_build: OnceLock::new(),
             source,
             patches,
+            shared,
         })
     }
 
@@ -229,7 +245,14 @@ impl Evaluator {
             match (self.source, normals) {
                 (NormalSource::Tangents, Some(normals)) => {
                     let (normals, _) = normals.as_chunks_mut::<3>();
-                    self.table.points_and_normals(&control, patches.rest(), positions, normals);
+                    let shared = self.shared.as_ref();
+                    self.table.points_and_normals(
+                        &control,
+                        patches.rest(),
+                        positions,
+                        normals,
+                        shared,
+                    );
                     patches.evaluate_with_normals(&control, positions, normals);
                 }
                 _ => {
@@ -240,9 +263,17 @@ impl Evaluator {
             return Ok(());
         }
         match (self.source, normals) {
-            (NormalSource::Tangents, Some(normals)) => {
-                self.table.evaluate_with_normals(control, positions, normals)
-            }
+            (NormalSource::Tangents, Some(normals)) => match &self.shared {
+                Some(shared) => {
+                    let control = pad(control);
+                    let (positions, _) = positions.as_chunks_mut::<3>();
+                    let (normals, _) = normals.as_chunks_mut::<3>();
+                    let rows = AllRows(self.num_vertices());
+                    self.table.points_and_normals(&control, rows, positions, normals, Some(shared));
+                    Ok(())
+                }
+                None => self.table.evaluate_with_normals(control, positions, normals),
+            },
             (NormalSource::Faces, Some(normals)) => {
                 self.table.evaluate(control, 3, positions)?;
                 let mesh = &self.faces;
@@ -269,5 +300,32 @@ impl Evaluator {
             )));
         }
         self.table.evaluate(values, width, out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cage of few neighbourhoods (the icosahedron's twelve vertices are all alike) shares
+    /// its limit rows' weights, and the frame from the shared weights is the table's own, bit
+    /// for bit.
+    #[test]
+    fn shared_weights_give_the_tables_frame() {
+        let mesh = crate::shapes::icosahedron();
+        let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        let options = Options { limit: true, normals: true, ..Options::new(Scheme::Loop, 3) };
+        let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+        assert!(evaluator.shared.is_some());
+        let control: Vec<f32> =
+            mesh.positions.iter().enumerate().map(|(i, x)| x * (1.0 + i as f32 / 100.0)).collect();
+        let n = 3 * evaluator.num_vertices();
+        let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+        evaluator.evaluate(&control, &mut positions, Some(&mut normals)).unwrap();
+        let (mut want, mut want_normals) = (vec![0.0; n], vec![0.0; n]);
+        evaluator.table().evaluate_with_normals(&control, &mut want, &mut want_normals).unwrap();
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&positions), bits(&want));
+        assert_eq!(bits(&normals), bits(&want_normals));
     }
 }

@@ -39,6 +39,7 @@ pub mod refined;
 pub mod rules;
 pub mod scheme;
 pub mod shapes;
+mod shared_weights;
 pub mod stencil;
 pub mod tags;
 pub mod triangles;

@@ -16,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
 use crate::primvar::Primvar;
 use crate::rules::{Source, Stencil, Weights};
+use crate::shared_weights::SharedWeights;
 
 /// The stencils of one level's vertices while the levels run: for vertex `i`, the control
 /// vertices `indices[s..s + n]` and their `weights`, where `[s, n] = spans[i]`. Rows are
@@ -683,7 +684,7 @@ impl StencilTable {
         let control = pad(control);
         let (positions, _) = positions.as_chunks_mut::<3>();
         let (normals, _) = normals.as_chunks_mut::<3>();
-        self.points_and_normals(&control, AllRows(self.num_stencils()), positions, normals);
+        self.points_and_normals(&control, AllRows(self.num_stencils()), positions, normals, None);
         Ok(())
     }
 
@@ -705,11 +706,65 @@ impl StencilTable {
         rows: impl RowIds,
         positions: &mut [[f32; 3]],
         normals: &mut [[f32; 3]],
+        shared: Option<&SharedWeights>,
     ) {
         let Some([t1, t2]) = self.tangent_weights() else {
             return self.points(control, rows, positions);
         };
         debug_assert!(t1.len() == self.indices.len() && t2.len() == self.indices.len());
+        match shared {
+            Some(shared) => {
+                let weights = shared.weights();
+                self.points_and_normals_from(
+                    control,
+                    rows,
+                    positions,
+                    normals,
+                    |r| shared.start(r),
+                    |w| {
+                        debug_assert!(w < weights.len());
+                        // SAFETY: `SharedWeights::new` gave each shared row a list of its own
+                        // length, so `start(r) + j` for entry `j` of row `r` is within `weights`.
+                        unsafe { *weights.get_unchecked(w) }
+                    },
+                );
+            }
+            None => {
+                let offsets = &self.offsets;
+                self.points_and_normals_from(
+                    control,
+                    rows,
+                    positions,
+                    normals,
+                    |r| offsets[r] as usize,
+                    |e| {
+                        // SAFETY: `e` is an entry of the table (`sum_rows`), and the tangent weights
+                        // have one per entry (`with_tangent_weights`).
+                        unsafe {
+                            [
+                                *self.weights.get_unchecked(e),
+                                *t1.get_unchecked(e),
+                                *t2.get_unchecked(e),
+                            ]
+                        }
+                    },
+                );
+            }
+        }
+    }
+
+    /// [`StencilTable::points_and_normals`] with the weights of row `r`'s entry `j` at
+    /// `weights(weight_start(r) + j)`.
+    #[inline(always)]
+    fn points_and_normals_from(
+        &self,
+        control: &[[f32; 4]],
+        rows: impl RowIds,
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+        weight_start: impl Fn(usize) -> usize,
+        weights: impl Fn(usize) -> [f32; 3],
+    ) {
         let first = |r: usize| {
             let (start, end) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
             let c = if start < end { self.indices[start] as usize } else { usize::MAX };
@@ -718,15 +773,12 @@ impl StencilTable {
         self.sum_rows::<2, _>(
             rows,
             first,
-            |[p, a, b, x0], e| {
-                // SAFETY: `e` is an entry of the table (`sum_rows`), the tangent weights have
-                // one per entry (`with_tangent_weights`), and entries name control vertices
-                // below `num_control`, which the callers made `control` hold.
-                let (x, w, w1, w2) = unsafe {
-                    let c = *self.indices.get_unchecked(e) as usize;
-                    let x = control.get_unchecked(c);
-                    (x, *self.weights.get_unchecked(e), *t1.get_unchecked(e), *t2.get_unchecked(e))
-                };
+            weight_start,
+            |[p, a, b, x0], e, w| {
+                // SAFETY: `e` is an entry of the table (`sum_rows`), and entries name control
+                // vertices below `num_control`, which the callers made `control` hold.
+                let x = unsafe { control.get_unchecked(*self.indices.get_unchecked(e) as usize) };
+                let [w, w1, w2] = weights(w);
                 let x = Lanes::load(x);
                 *p = p.add_lanes(x, w);
                 let d = x.sub(*x0);
@@ -783,7 +835,8 @@ impl StencilTable {
         self.sum_rows::<4, _>(
             AllRows(self.num_stencils()),
             |_| [0.0f32; N],
-            |sum, e| {
+            |r| self.offsets[r] as usize,
+            |sum, e, _| {
                 // SAFETY: as in `evaluate_xyz`.
                 let (x, w) = unsafe { self.entry(control, e) };
                 for k in 0..N {
@@ -807,7 +860,8 @@ impl StencilTable {
         self.sum_rows::<4, _>(
             rows,
             |_| Lanes::ZERO,
-            |sum, e| {
+            |r| self.offsets[r] as usize,
+            |sum, e, _| {
                 // SAFETY: `e` is an entry of the table (`sum_rows`), and every control index of
                 // a table is below its `num_control` (the rows are built from the control
                 // vertices' own stencils); the callers made `control` hold `num_control`
@@ -832,8 +886,10 @@ impl StencilTable {
         }
     }
 
-    /// Sums the rows `ids` names, in its order: each from `start(row)`, `add(sum, e)` for each
-    /// of its entries `e` in order, and hands each finished sum to `store(row, sum)`.
+    /// Sums the rows `ids` names, in its order: each from `start(row)`, `add(sum, e, w)` for
+    /// each of its entries `e` in order, and hands each finished sum to `store(row, sum)`. `w`
+    /// is where the entry's weights are when they are not the table's own: the row's
+    /// `weight_start(row)` plus the entry's place in the row (see [`SharedWeights`]).
     ///
     /// `N` rows are summed side by side: each sum is a chain of dependent additions, whose
     /// latency (not memory) bounds one row at a time; several chains in flight keep the adder
@@ -846,7 +902,8 @@ impl StencilTable {
         &self,
         ids: impl RowIds,
         start: impl Fn(usize) -> S,
-        mut add: impl FnMut(&mut S, usize),
+        weight_start: impl Fn(usize) -> usize,
+        mut add: impl FnMut(&mut S, usize, usize),
         mut store: impl FnMut(usize, S),
     ) {
         let offsets = &self.offsets;
@@ -857,15 +914,18 @@ impl StencilTable {
             let rows: [usize; N] = std::array::from_fn(|k| row(i + k));
             let starts = rows.map(|r| offsets[r] as usize);
             let ends = rows.map(|r| offsets[r + 1] as usize);
+            let weights = rows.map(&weight_start);
             let common = (0..N).map(|k| ends[k] - starts[k]).min().unwrap_or(0);
             let mut sums = rows.map(&start);
             for j in 0..common {
-                for (sum, &start) in sums.iter_mut().zip(&starts) {
-                    add(sum, start + j);
+                for k in 0..N {
+                    add(&mut sums[k], starts[k] + j, weights[k] + j);
                 }
             }
-            for ((sum, &start), &end) in sums.iter_mut().zip(&starts).zip(&ends) {
-                (start + common..end).for_each(|e| add(sum, e));
+            for k in 0..N {
+                let shift = weights[k].wrapping_sub(starts[k]);
+                (starts[k] + common..ends[k])
+                    .for_each(|e| add(&mut sums[k], e, e.wrapping_add(shift)));
             }
             for (k, sum) in sums.into_iter().enumerate() {
                 store(rows[k], sum);
@@ -875,7 +935,9 @@ impl StencilTable {
         for k in i..count {
             let r = row(k);
             let mut sum = start(r);
-            (offsets[r] as usize..offsets[r + 1] as usize).for_each(|e| add(&mut sum, e));
+            let shift = weight_start(r).wrapping_sub(offsets[r] as usize);
+            (offsets[r] as usize..offsets[r + 1] as usize)
+                .for_each(|e| add(&mut sum, e, e.wrapping_add(shift)));
             store(r, sum);
         }
     }
