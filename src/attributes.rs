@@ -23,7 +23,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::fvar::FVarChannel;
+use crate::fvar::{FVarChannel, SeamCorners};
 use crate::primvar::Rows;
 
 /// The most floats one value of a channel may have.
@@ -269,6 +269,15 @@ pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLay
     (channels, layout)
 }
 
+/// The channels of a result: every attribute, and for each face-varying one whose indices are
+/// the result's implicit faces' own but near seams, its place among them and those corners
+/// ([`SeamCorners`]; its `indices` are then empty).
+#[derive(Debug, Default)]
+pub struct Channels {
+    pub attributes: Vec<Attribute>,
+    pub seam_corners: Vec<(usize, SeamCorners)>,
+}
+
 /// Every channel back out, in the order of the `count` attributes given: the vertex-varying
 /// ones from `rows` ([`unpack`]), the face-varying ones from `channels`, with the last level's
 /// corner values as their indices.
@@ -278,14 +287,18 @@ pub fn unpack_all(
     channels: Vec<FVarChannel>,
     fvar_layout: &FVarLayout,
     count: usize,
-) -> Vec<Attribute> {
+) -> Channels {
     let mut slots: Vec<Option<Attribute>> = vec![None; count];
+    let mut seam_corners = Vec::new();
     for (a, (i, ..)) in unpack(rows, layout).into_iter().zip(&layout.channels) {
         slots[*i] = Some(a);
     }
     for (channel, members) in channels.into_iter().zip(&fvar_layout.groups) {
         let mut level = channel.level;
         let width = level.width;
+        if let Some(seams) = level.seam_corners.take() {
+            seam_corners.extend(members.iter().map(|m| (m.0, seams.clone())));
+        }
         if let [(i, name, size, _)] = &members[..] {
             // A lone channel takes the level's arrays as they are.
             let (values, indices) = (level.values, level.corner_values);
@@ -310,5 +323,5 @@ pub fn unpack_all(
             slots[*i] = Some(Attribute::face_varying(name.clone(), *size, values, indices));
         }
     }
-    slots.into_iter().flatten().collect()
+    Channels { attributes: slots.into_iter().flatten().collect(), seam_corners }
 }

@@ -335,19 +335,39 @@ fn join<const W: usize, const A: usize, const B: usize>(
     first: &[f32],
     second: &[f32],
 ) -> Vec<[f32; W]> {
+    let n = positions.len();
+    if A > 0 && first.len() == n * A && B > 0 && second.len() == n * B {
+        // Every value there (the common case): one zipped pass, no index checks per point.
+        let rows = positions.iter().zip(first.chunks_exact(A)).zip(second.chunks_exact(B));
+        return rows.map(|((p, a), b)| packed_point::<W, A, B>(p, a, b)).collect();
+    }
+    if A > 0 && first.len() == n * A && B == 0 {
+        let rows = positions.iter().zip(first.chunks_exact(A));
+        return rows.map(|(p, a)| packed_point::<W, A, 0>(p, a, &[])).collect();
+    }
     let point = |(i, p): (usize, &[f32; 3])| {
-        let mut point = [0.0; W];
-        point[..3].copy_from_slice(p);
-        if let (Some(to), Some(from)) = (point.get_mut(3..3 + A), first.get(i * A..(i + 1) * A)) {
-            to.copy_from_slice(from);
-        }
-        let to = point.get_mut(3 + A..3 + A + B);
-        if let (Some(to), Some(from)) = (to, second.get(i * B..(i + 1) * B)) {
-            to.copy_from_slice(from);
-        }
-        point
+        let (a, b) = (first.get(i * A..(i + 1) * A), second.get(i * B..(i + 1) * B));
+        packed_point::<W, A, B>(p, a.unwrap_or(&[]), b.unwrap_or(&[]))
     };
     positions.iter().enumerate().map(point).collect()
+}
+
+/// One packed point: `p`, then `a` and `b` when they hold `A` and `B` floats (zeros otherwise).
+#[inline(always)]
+fn packed_point<const W: usize, const A: usize, const B: usize>(
+    p: &[f32; 3],
+    a: &[f32],
+    b: &[f32],
+) -> [f32; W] {
+    let mut point = [0.0; W];
+    point[..3].copy_from_slice(p);
+    if let (Some(to), Some(from)) = (point.get_mut(3..3 + A), a.first_chunk::<A>()) {
+        to.copy_from_slice(from);
+    }
+    if let (Some(to), Some(from)) = (point.get_mut(3 + A..3 + A + B), b.first_chunk::<B>()) {
+        to.copy_from_slice(from);
+    }
+    point
 }
 
 /// Where a host appends a level's new values: the values themselves (every kind of
@@ -390,12 +410,15 @@ pub struct Unpacking {
 }
 
 impl Unpacking {
-    /// Room for `count` points of channels of `widths` (packed after the positions, in order).
-    pub fn new(count: usize, widths: &[usize]) -> Self {
+    /// Room for `count` points of channels of `widths` (packed after the positions, in order),
+    /// and for channel `k`'s values, `room[k]` values when that is more (a face-varying
+    /// channel's values after the vertices' own, which would otherwise move them all).
+    pub fn new(count: usize, widths: &[usize], room: &[usize]) -> Self {
         let mut at = 3;
-        let channels = widths.iter().map(|&width| {
+        let channels = widths.iter().enumerate().map(|(k, &width)| {
             at += width;
-            (at - width, width, Vec::with_capacity(count * width))
+            let values = room.get(k).map_or(count, |&r| r.max(count));
+            (at - width, width, Vec::with_capacity(values * width))
         });
         Unpacking { positions: Vec::with_capacity(count), channels: channels.collect() }
     }

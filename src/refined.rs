@@ -1,9 +1,11 @@
 //! The result of a call, whose arrays can be copied out piece by piece.
 
-use crate::attributes::Attribute;
+use crate::attributes::{Attribute, Channels};
+use crate::fvar::SeamCorners;
 use crate::mesh::{chunked, HalfEdgeMesh, PolyMesh};
 use crate::refine::pqq;
 use std::borrow::Cow;
+use std::cell::OnceCell;
 
 /// A subdivision result. After an untagged quad split (Catmull-Clark, bilinear) its face list is
 /// implicit: it keeps the last level's parent mesh, from which the faces follow by index
@@ -16,6 +18,13 @@ use std::borrow::Cow;
 pub struct Refined<'a> {
     form: Form<'a>,
     attributes: Vec<Attribute>,
+    /// The face-varying attributes whose indices are the faces' own but near seams (their
+    /// `indices` are empty): each one's place in `attributes` and its corners near seams. Like
+    /// the implicit faces, they are made piece by piece ([`Refined::index_and_triangle_chunks`]).
+    seam_corners: Vec<(usize, SeamCorners)>,
+    /// `attributes` with every index list whole, made when [`Refined::attributes`] is first
+    /// called on a result with `seam_corners`.
+    listed: OnceCell<Vec<Attribute>>,
     /// The limit tangents of the last level's vertices, when its scheme has limit masks and
     /// the limit or normals were asked for.
     tangents: Option<Box<[Vec<f32>; 2]>>,
@@ -33,23 +42,30 @@ enum Form<'a> {
 }
 
 impl<'a> Refined<'a> {
+    fn new(form: Form<'a>, channels: Channels) -> Self {
+        let Channels { attributes, seam_corners } = channels;
+        Refined {
+            form,
+            attributes,
+            seam_corners,
+            listed: OnceCell::new(),
+            tangents: None,
+            normals: None,
+        }
+    }
+
     /// A result whose faces are listed.
-    pub(crate) fn poly(poly: PolyMesh, attributes: Vec<Attribute>) -> Self {
-        Refined { form: Form::Poly(poly), attributes, tangents: None, normals: None }
+    pub(crate) fn poly(poly: PolyMesh, channels: Channels) -> Self {
+        Refined::new(Form::Poly(poly), channels)
     }
 
     /// A result whose faces are the implicit quads of one split of `parent`.
     pub(crate) fn quads(
         positions: Vec<f32>,
         parent: Cow<'a, HalfEdgeMesh>,
-        attributes: Vec<Attribute>,
+        channels: Channels,
     ) -> Self {
-        Refined {
-            form: Form::Quads { positions, parent: Box::new(parent) },
-            attributes,
-            tangents: None,
-            normals: None,
-        }
+        Refined::new(Form::Quads { positions, parent: Box::new(parent) }, channels)
     }
 
     /// A result with the limit tangents, and the unit normal of each vertex when asked for
@@ -57,11 +73,15 @@ impl<'a> Refined<'a> {
     /// call asked.
     pub(crate) fn with_tangents(
         poly: PolyMesh,
-        attributes: Vec<Attribute>,
+        channels: Channels,
         tangents: [Vec<f32>; 2],
         normals: Option<Vec<f32>>,
     ) -> Self {
-        Refined { form: Form::Poly(poly), attributes, tangents: Some(Box::new(tangents)), normals }
+        Refined {
+            tangents: Some(Box::new(tangents)),
+            normals,
+            ..Refined::new(Form::Poly(poly), channels)
+        }
     }
 
     /// This result with vertex normals from its faces ([`crate::limit::face_normals`]) when it
@@ -70,11 +90,10 @@ impl<'a> Refined<'a> {
         if self.normals.is_some() {
             return self;
         }
-        let Refined { form, attributes, .. } = self;
-        let poly =
-            Refined { form, attributes: Vec::new(), tangents: None, normals: None }.into_poly();
+        let (poly, attributes) = self.into_parts();
         let normals = crate::limit::face_normals(&poly);
-        Refined { form: Form::Poly(poly), attributes, tangents: None, normals: Some(normals) }
+        let channels = Channels { attributes, seam_corners: Vec::new() };
+        Refined { normals: Some(normals), ..Refined::poly(poly, channels) }
     }
 
     /// The limit tangents (OpenSubdiv's `tan1` and `tan2`, three floats per vertex) when the
@@ -99,16 +118,35 @@ impl<'a> Refined<'a> {
 
     /// The refined attribute channels, in the order they were given.
     pub fn attributes(&self) -> &[Attribute] {
-        &self.attributes
+        if self.seam_corners.is_empty() {
+            return &self.attributes;
+        }
+        self.listed.get_or_init(|| {
+            let mut attributes = self.attributes.clone();
+            let faces = match &self.form {
+                Form::Poly(poly) => Cow::Borrowed(&poly.indices[..]),
+                Form::Quads { parent, .. } => Cow::Owned(pqq::child_face_indices(parent)),
+            };
+            list_indices(&self.seam_corners, &mut attributes, &faces);
+            attributes
+        })
+    }
+
+    /// The attributes as the result keeps them, and the face-varying ones among them whose
+    /// indices are left to be made piece by piece with the faces' (their `indices` here are
+    /// empty): each one's place and corners near seams. Such an attribute's index list is the
+    /// face index list ([`Refined::index_and_triangle_chunks`]) with each piece patched by
+    /// [`SeamCorners::patch`] at its place, as [`Refined::attributes`] lists it whole.
+    pub fn attributes_in_pieces(&self) -> (&[Attribute], &[(usize, SeamCorners)]) {
+        (&self.attributes, &self.seam_corners)
     }
 
     /// The flat arrays and the attribute channels.
     pub fn into_parts(self) -> (PolyMesh, Vec<Attribute>) {
-        let Refined { form, attributes, .. } = self;
-        (
-            Refined { form, attributes: Vec::new(), tangents: None, normals: None }.into_poly(),
-            attributes,
-        )
+        let Refined { form, mut attributes, seam_corners, .. } = self;
+        let poly = Refined::new(form, Channels::default()).into_poly();
+        list_indices(&seam_corners, &mut attributes, &poly.indices);
+        (poly, attributes)
     }
 
     pub fn positions(&self) -> &[f32] {
@@ -185,6 +223,21 @@ impl<'a> Refined<'a> {
                 indices: pqq::child_face_indices(&parent),
                 face_sizes: vec![4; parent.num_half_edges()],
             },
+        }
+    }
+}
+
+/// Gives the attributes of `seam_corners` their index lists: `faces` patched near seams.
+fn list_indices(
+    seam_corners: &[(usize, SeamCorners)],
+    attributes: &mut [Attribute],
+    faces: &[u32],
+) {
+    for (i, seams) in seam_corners {
+        let mut indices = faces.to_vec();
+        seams.patch(0, &mut indices);
+        if let Some(a) = attributes.get_mut(*i) {
+            a.indices = Some(indices);
         }
     }
 }

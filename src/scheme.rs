@@ -2,7 +2,7 @@
 //! with its rules. The vocabulary lives in [`crate::options`], the sizes in [`crate::predict`],
 //! the result in [`crate::refined`]; the names are re-exported here.
 
-use crate::attributes::{self, Attribute};
+use crate::attributes::{self, Attribute, Channels};
 use crate::error::{Error, Result};
 use crate::fvar::{FVarChannel, LevelSharpness, MixedRules, PrimalRules, Split};
 use crate::limit::FirstFaces;
@@ -341,8 +341,8 @@ pub(crate) fn build_stencils(
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
 /// call shares one instance of the level loop.
-fn no_attributes(_: Rows, _: Vec<FVarChannel>) -> Vec<Attribute> {
-    Vec::new()
+fn no_attributes(_: Rows, _: Vec<FVarChannel>) -> Channels {
+    Channels::default()
 }
 
 /// Checks `attributes` against `mesh` as the `*_with` functions do before any work.
@@ -502,7 +502,7 @@ fn refine_levels<'a, V: Primvar>(
     tags: &Tags,
     rows: V,
     fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
+    finish: impl FnOnce(V, Vec<FVarChannel>) -> Channels,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
@@ -568,7 +568,7 @@ fn run_levels<'a, V: Primvar>(
     tags: &Tags,
     mut rows: V,
     mut fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(V, Vec<FVarChannel>) -> Vec<Attribute>,
+    finish: impl FnOnce(V, Vec<FVarChannel>) -> Channels,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
@@ -840,13 +840,14 @@ fn refine_packed<S: PrimalSplit<R>, R>(
     mesh: &HalfEdgeMesh,
     rules: &R,
     channels: &[Channel<'_>],
+    room: &[usize],
 ) -> Option<Unpacking> {
     let widths: Vec<_> = channels.iter().map(|c| c.width).collect();
     if widths.is_empty() || 3 + widths.iter().sum::<usize>() > MAX_PACKED {
         return None;
     }
     let parent = pack_points::<MAX_PACKED>(&mesh.positions, channels);
-    let mut child = Unpacking::new(S::num_points(mesh), &widths);
+    let mut child = Unpacking::new(S::num_points(mesh), &widths, room);
     S::points_into(mesh, rules, &parent, &mut child);
     Some(child)
 }
@@ -886,8 +887,11 @@ impl<V: Primvar> Primal<'_, '_, V> {
     ) -> (Level<'a, V>, Option<LevelTags>) {
         let split = if S::FACE_POINTS { Split::Quad } else { Split::Triangle };
         let (sharp, mode) = (&self.sharp, self.mode);
+        let tags = self.sharp.tags;
+        let holes = tags.filter(|t| t.has_holes());
+        let implicit = self.last && S::IMPLICIT_FACES && holes.is_none();
         let steps: Vec<_> =
-            self.fvar.iter_mut().map(|c| c.begin(&mesh, split, sharp, mode)).collect();
+            self.fvar.iter_mut().map(|c| c.begin(&mesh, split, sharp, mode, implicit)).collect();
         // The vertex-varying rows and the face-varying values that follow the surface (their
         // values numbered as vertices) take the surface's weights: one walk of the rules refines
         // them with the positions, packed side by side with the sum in registers, when that fits
@@ -895,11 +899,14 @@ impl<V: Primvar> Primal<'_, '_, V> {
         let fvar_joint = FVarChannel::follows_surface(linear, mode) && !self.fvar.is_empty();
         let mut channels: Vec<_> = self.rows.as_channel().into_iter().collect();
         let has_rows = !channels.is_empty();
+        // Each face-varying channel's values grow to its child's count after the walk.
+        let mut room = vec![0; channels.len()];
         if fvar_joint {
             channels.extend(self.fvar.iter().map(|c| c.vertex_values(&mesh)));
+            room.extend(steps.iter().map(|s| s.num_values()));
         }
         let (positions, rows, mut fvar_values) =
-            match refine_packed::<S, R>(&mesh, rules, &channels) {
+            match refine_packed::<S, R>(&mesh, rules, &channels, &room) {
                 Some(child) => {
                     let (positions, refined) = child.into_parts();
                     let mut refined = refined.into_iter();
@@ -931,7 +938,6 @@ impl<V: Primvar> Primal<'_, '_, V> {
         for ((channel, step), joint) in self.fvar.iter_mut().zip(steps).zip(fvar_values) {
             channel.finish(&mesh, split, &value_rules, step, linear, sharp, mode, joint);
         }
-        let tags = self.sharp.tags;
         if rows.overflowed() {
             // A stencil build past its limit is refused whatever follows: stop before the
             // child's topology, which would take as much memory again (in wasm, more than
@@ -944,8 +950,7 @@ impl<V: Primvar> Primal<'_, '_, V> {
             return (Level::Mesh(child, rows), child_tags);
         }
         let positions = positions.into_flattened();
-        let holes = tags.filter(|t| t.has_holes());
-        if S::IMPLICIT_FACES && holes.is_none() {
+        if implicit {
             return (Level::Quads { positions, parent: mesh, rows }, None);
         }
         let mut indices = S::child_face_indices(&mesh);

@@ -365,3 +365,60 @@ fn the_byte_guard_counts_attributes() {
     let uv = Attribute::face_varying("uv", 16, vec![0.5; 16], vec![0; 24]);
     assert!(subdivide_with_attributes(&cube, &[wide, uv], &options, &Tags::default()).is_ok());
 }
+
+/// A last Catmull-Clark or bilinear level keeps its faces implicit, and the face-varying indices
+/// with them: the faces' own indices, patched near seams (`Refined::attributes_in_pieces`), as
+/// the wasm bindings copy them out piece by piece. Patched in pieces of any size at their place,
+/// joined, they are the list `Refined::attributes` gives, which is the list a listed level gives
+/// (a last level with a hole is listed). The demo cube's UV cross has seams on 7 of its edges;
+/// every corner of the other UV is its own value.
+#[test]
+fn implicit_face_varying_indices_patch_in_any_pieces() {
+    use subsurf::scheme::subdivide_refined_with;
+    let cube = cube();
+    let cross = subsurf::shapes::demo_shape_uv("cube").expect("the demo cube has UVs");
+    let mut every = uv_on_every_corner(&cube, 7, 0.25);
+    every.name = "st".into();
+    let colour = Attribute::vertex("colour", 3, cube.positions.clone());
+    let mut checked = 0;
+    for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
+        for levels in [1, 2] {
+            let options = Options::new(scheme, levels);
+            let channels = [cross.clone(), colour.clone(), every.clone()];
+            let refined = subdivide_refined_with(&cube, &channels, &options, &Tags::default())
+                .unwrap_or_else(|e| panic!("{scheme} L{levels}: {e}"));
+            let (kept, seam_corners) = refined.attributes_in_pieces();
+            assert_eq!(seam_corners.len(), 2, "{scheme} L{levels}: both UVs in pieces");
+            let mut faces = Vec::new();
+            refined.index_and_triangle_chunks(|c| faces.extend_from_slice(c), |_| {});
+            for (i, seams) in seam_corners {
+                assert_eq!(kept[*i].indices.as_deref(), Some(&[][..]));
+                let want = refined.attributes()[*i].indices.clone().expect("face-varying");
+                assert_ne!(want, faces, "{scheme} L{levels}: the seams change some corners");
+                for piece in [1, 3, 4, 5, 17, 64, faces.len()] {
+                    let mut got = Vec::new();
+                    for (k, chunk) in faces.chunks(piece).enumerate() {
+                        let mut chunk = chunk.to_vec();
+                        seams.patch(k * piece, &mut chunk);
+                        got.extend(chunk);
+                    }
+                    assert_eq!(got, want, "{scheme} L{levels}, pieces of {piece}");
+                }
+                checked += 1;
+            }
+            // A level with a hole is listed whole (`FVarLevel::child_topology`): its corners
+            // are those of the implicit level, but for the hole's children.
+            let hole = Tags { holes: vec![5], ..Tags::default() };
+            let (_, listed) = subdivide_with_attributes(&cube, &channels, &options, &hole)
+                .unwrap_or_else(|e| panic!("{scheme} L{levels}: {e}"));
+            let hole_corners = 4 * 4usize.pow(levels);
+            let kept_faces = refined.num_indices() - hole_corners;
+            for (i, _) in seam_corners {
+                let all = refined.attributes()[*i].indices.clone().expect("face-varying");
+                assert_eq!(listed[*i].indices.as_deref(), Some(&all[..kept_faces]));
+                assert_eq!(listed[*i].values, refined.attributes()[*i].values);
+            }
+        }
+    }
+    assert_eq!(checked, 8);
+}

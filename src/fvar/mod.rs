@@ -53,7 +53,7 @@ mod sqrt3;
 mod topology;
 
 pub use interpolate::{interpolate, MixedRules, PrimalRules, ValueRules};
-pub use topology::{FVarLevel, LevelSharpness, Split};
+pub use topology::{FVarLevel, LevelSharpness, SeamCorners, Split};
 
 use crate::options::FVarLinear;
 
@@ -141,6 +141,13 @@ pub struct FVarStep {
     near_seams: Vec<u32>,
 }
 
+impl FVarStep {
+    /// Number of values of the next level.
+    pub fn num_values(&self) -> usize {
+        self.child.num_values()
+    }
+}
+
 impl FVarChannel {
     /// A channel of `width` floats per value, one index per face corner.
     pub fn new(width: usize, values: Vec<f32>, indices: Vec<u32>) -> Self {
@@ -159,7 +166,7 @@ impl FVarChannel {
         sharp: &LevelSharpness,
         mode: FVarLinear,
     ) {
-        let step = self.begin(mesh, split, sharp, mode);
+        let step = self.begin(mesh, split, sharp, mode, false);
         self.finish(mesh, split, rules, step, linear, sharp, mode, None);
     }
 
@@ -170,12 +177,15 @@ impl FVarChannel {
     }
 
     /// The first step of [`FVarChannel::refine`]: the next level's topology, without values.
+    /// `implicit` when the next level is a result whose faces stay implicit (a last quad split
+    /// without holes): its corner values are then left implicit too ([`SeamCorners`]).
     pub fn begin(
         &mut self,
         mesh: &HalfEdgeMesh,
         split: Split,
         sharp: &LevelSharpness,
         mode: FVarLinear,
+        implicit: bool,
     ) -> FVarStep {
         let mode = ModeRules::new(mode);
         if !self.analysed {
@@ -191,7 +201,7 @@ impl FVarChannel {
             self.analysed = true;
         }
         let near_seams = self.level.cells_near_seams(mesh);
-        let child = self.level.child_topology(mesh, split, sharp, mode, &near_seams);
+        let child = self.level.child_topology(mesh, split, sharp, mode, &near_seams, implicit);
         FVarStep { child, near_seams }
     }
 

@@ -149,6 +149,39 @@ pub struct FVarLevel {
     /// corners hold the crease's end values. Sparse: such values lie along seams only.
     pub(crate) ends: Vec<(u32, [u32; 2])>,
     pub(crate) edge_tags: Vec<u8>,
+    /// For a last level whose faces stay implicit ([`crate::refined::Refined`]): the corners
+    /// that do not see their vertex, and `corner_values` is empty.
+    pub(crate) seam_corners: Option<SeamCorners>,
+}
+
+/// The corner values of a level whose faces are the implicit quads of a split: everywhere the
+/// child faces' own indices ([`crate::refine::pqq::child_face_indices`]), but for the child
+/// corners of the parent cells near seams, listed here. The 64 MB corner list of a textured
+/// 1M-quad split is then never written whole to memory and read back: the bindings patch the
+/// face indices piece by piece as they copy them out.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SeamCorners {
+    /// Ascending, disjoint ranges of child corners `[start, end)`, each with where its values
+    /// start in `values`.
+    spans: Vec<[u32; 3]>,
+    values: Vec<u32>,
+}
+
+impl SeamCorners {
+    /// Writes over `corners`, the child corners from `at` on, the values of the spans there.
+    pub fn patch(&self, at: usize, corners: &mut [u32]) {
+        let end = at + corners.len();
+        let first = self.spans.partition_point(|s| (s[1] as usize) <= at);
+        for &[s, e, from] in &self.spans[first..] {
+            let (s, e, from) = (s as usize, e as usize, from as usize);
+            if s >= end {
+                break;
+            }
+            let (lo, hi) = (s.max(at), e.min(end));
+            let from = from + lo - s;
+            corners[lo - at..hi - at].copy_from_slice(&self.values[from..from + hi - lo]);
+        }
+    }
 }
 
 /// Builds a level's value numbering vertex by vertex (see [`FVarLevel`]).
@@ -197,6 +230,23 @@ impl Numbering {
             several: self.several,
             ends: self.ends,
             edge_tags,
+            seam_corners: None,
+        }
+    }
+}
+
+/// Writes into `out` (`N` floats per vertex) row `first_value(v)` of `values` for each vertex
+/// that has one.
+fn copy_first_values<const N: usize>(
+    out: &mut [f32],
+    values: &[f32],
+    first_value: impl Fn(usize) -> Option<u32>,
+) {
+    let (rows, _) = values.as_chunks::<N>();
+    let (out, _) = out.as_chunks_mut::<N>();
+    for (v, target) in out.iter_mut().enumerate() {
+        if let Some(row) = first_value(v).and_then(|value| rows.get(value as usize)) {
+            *target = *row;
         }
     }
 }
@@ -391,8 +441,32 @@ impl FVarLevel {
         let row = |i: u32| &values[i as usize * width..(i as usize + 1) * width];
         let maybe_non_manifold =
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
+        // On a manifold mesh, a vertex that no seam or boundary rule touches has the one value
+        // its first corner sees: copied in one tight pass, the others visited after.
+        let mut visit = Vec::new();
+        if !maybe_non_manifold {
+            let first_value = |v: usize| {
+                let (start, end) = (mesh.vertex_offsets[v], mesh.vertex_offsets[v + 1]);
+                (start < end && !mismatch[v])
+                    .then(|| indices[mesh.vertex_half_edges[start as usize] as usize])
+            };
+            match width {
+                2 => copy_first_values::<2>(&mut values_out, values, first_value),
+                3 => copy_first_values::<3>(&mut values_out, values, first_value),
+                4 => copy_first_values::<4>(&mut values_out, values, first_value),
+                _ => {
+                    for (v, target) in values_out.chunks_exact_mut(width.max(1)).enumerate() {
+                        if let Some(value) = first_value(v) {
+                            target.copy_from_slice(row(value));
+                        }
+                    }
+                }
+            }
+            visit.extend((0..nv as u32).filter(|&v| mismatch[v as usize]));
+        }
+        let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { visit };
         let (mut fan, mut siblings, mut uniques) = (Vec::new(), Vec::new(), Vec::new());
-        for v in 0..nv as u32 {
+        for v in visit {
             let out = mesh.out_half_edges(v);
             // A vertex without faces keeps one value (zero) that no corner sees.
             let Some(&first_corner) = out.first() else { continue };
@@ -592,6 +666,7 @@ impl FVarLevel {
         sharp: &LevelSharpness,
         mode: ModeRules,
         near_seams: &[u32],
+        implicit: bool,
     ) -> FVarLevel {
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         let (face_point_of, face_points) = split.face_points(mesh);
@@ -685,8 +760,20 @@ impl FVarLevel {
             }
         };
         // A cell away from seams has child corners that see the child vertices: the child
-        // faces' own indices, which the uniform splits make whole; the cells near a seam are
-        // then written over.
+        // faces' own indices, which the uniform splits make whole (or leave implicit); the
+        // cells near a seam are then written over.
+        if implicit && split == Split::Quad {
+            let mut seams = SeamCorners::default();
+            for &c in near_seams {
+                let cell = mesh.cell_range(c as usize);
+                let from = seams.values.len();
+                seams.values.resize(from + 4 * cell.len(), 0);
+                cell_corners(c, &mut seams.values[from..]);
+                seams.spans.push([4 * cell.start as u32, 4 * cell.end as u32, from as u32]);
+            }
+            next.seam_corners = Some(seams);
+            return next;
+        }
         let mut corners = match split {
             Split::Quad => crate::refine::pqq::child_face_indices(mesh),
             Split::Triangle => crate::refine::ptq::child_face_indices(mesh),

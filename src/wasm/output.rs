@@ -87,8 +87,31 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     let sizes = lent.take(2, refined.num_faces(), &intrinsics)?;
     let triangles = lent.take(3, refined.num_triangle_indices(), &intrinsics)?;
     let mut triangles = Output::new(triangles, &intrinsics);
-    refined
-        .index_and_triangle_chunks(|c| indices.push(c, u32_view), |c| triangles.push(c, u32_view));
+    // Face-varying indices that are the faces' own but near seams come with the faces' pieces.
+    let (attributes, seam_corners) = refined.attributes_in_pieces();
+    let num_indices = u32::try_from(refined.num_indices())
+        .map_err(|_| JsError::new("the result's indices are too long"))?;
+    let mut in_pieces: Vec<_> = seam_corners
+        .iter()
+        .map(|(i, seams)| {
+            let array = Uint32Array::new_with_length(num_indices).into();
+            (*i, seams, Output::new(array, &intrinsics))
+        })
+        .collect();
+    let (mut at, mut patched) = (0, Vec::new());
+    refined.index_and_triangle_chunks(
+        |c| {
+            indices.push(c, u32_view);
+            for (_, seams, out) in &mut in_pieces {
+                patched.clear();
+                patched.extend_from_slice(c);
+                seams.patch(at, &mut patched);
+                out.push(&patched, u32_view);
+            }
+            at += c.len();
+        },
+        |c| triangles.push(c, u32_view),
+    );
     let mut face_sizes = Output::new(sizes, &intrinsics);
     match refined.uniform_face_size() {
         Some(n) => face_sizes.fill(n),
@@ -102,20 +125,34 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     if let Some(normals) = refined.normals() {
         set_field(&object, "normals", &Float32Array::from(normals))?;
     }
-    if !refined.attributes().is_empty() {
-        set_field(&object, "attributes", &channels_object(refined.attributes())?)?;
+    if !attributes.is_empty() {
+        let mut made = Vec::with_capacity(in_pieces.len());
+        for (i, _, out) in in_pieces {
+            made.push((i, out.finish()?));
+        }
+        set_field(&object, "attributes", &channels_object_with(attributes, made)?)?;
     }
     Ok(object.into())
 }
 
 /// `{ name: { array, itemSize, indices? } }`: fresh arrays, `indices` for face-varying channels.
 pub(super) fn channels_object(attributes: &[Attribute]) -> JsResult<JsValue> {
+    channels_object_with(attributes, Vec::new())
+}
+
+/// [`channels_object`] with the `indices` of the attributes `made` names already in JS.
+fn channels_object_with(
+    attributes: &[Attribute],
+    made: Vec<(usize, JsValue)>,
+) -> JsResult<JsValue> {
     let channels = Object::new();
-    for a in attributes {
+    for (k, a) in attributes.iter().enumerate() {
         let channel = Object::new();
         set_field(&channel, "array", &Float32Array::from(&a.values[..]))?;
         set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
-        if let Some(indices) = &a.indices {
+        if let Some((_, indices)) = made.iter().find(|(i, _)| *i == k) {
+            set_field(&channel, "indices", indices)?;
+        } else if let Some(indices) = &a.indices {
             set_field(&channel, "indices", &Uint32Array::from(&indices[..]))?;
         }
         set_field(&channels, &a.name, &channel)?;
