@@ -5,7 +5,7 @@ use crate::fvar::SeamCorners;
 use crate::mesh::{chunked, HalfEdgeMesh, PolyMesh};
 use crate::refine::pqq;
 use std::borrow::Cow;
-use std::cell::OnceCell;
+use std::sync::OnceLock;
 
 /// A subdivision result. After an untagged quad split (Catmull-Clark, bilinear) its face list is
 /// implicit: it keeps the last level's parent mesh, from which the faces follow by index
@@ -24,7 +24,7 @@ pub struct Refined<'a> {
     seam_corners: Vec<(usize, SeamCorners)>,
     /// `attributes` with every index list whole, made when [`Refined::attributes`] is first
     /// called on a result with `seam_corners`.
-    listed: OnceCell<Vec<Attribute>>,
+    listed: OnceLock<Vec<Attribute>>,
     /// The limit tangents of the last level's vertices, when its scheme has limit masks and
     /// the limit or normals were asked for.
     tangents: Option<Box<[Vec<f32>; 2]>>,
@@ -48,7 +48,7 @@ impl<'a> Refined<'a> {
             form,
             attributes,
             seam_corners,
-            listed: OnceCell::new(),
+            listed: OnceLock::new(),
             tangents: None,
             normals: None,
         }

@@ -422,3 +422,10 @@ fn implicit_face_varying_indices_patch_in_any_pieces() {
     }
     assert_eq!(checked, 8);
 }
+
+/// A result can be shared between threads (its index lists are made once, on first use).
+#[test]
+fn a_result_is_send_and_sync() {
+    fn shared<T: Send + Sync>() {}
+    shared::<subsurf::refined::Refined<'static>>();
+}
