@@ -290,25 +290,18 @@ impl Seams {
             }
         };
         if mesh.has_simple_edges() {
-            // Each edge once, from its lower half-edge, in half-edge order: `h` runs from `a`
-            // to `b` and its twin `t` back, so `a`'s corners are `h` and `t`'s next, `b`'s
-            // are `h`'s next and `t` (fewer and more sequential reads than edge by edge).
-            for (h, &t) in mesh.he_next_around_edge.iter().enumerate() {
-                let h = h as u32;
-                if t < h {
-                    continue;
-                }
-                let next = mesh.next_in_cell(h);
-                if t == h {
-                    boundary[mesh.he_from[h as usize] as usize] = true;
-                    boundary[mesh.he_from[next as usize] as usize] = true;
-                    continue;
-                }
-                let at_a = indices[h as usize] != indices[mesh.next_in_cell(t) as usize];
-                let at_b = indices[next as usize] != indices[t as usize];
-                if at_a || at_b {
-                    let ends = [mesh.he_from[h as usize], mesh.he_from[next as usize]];
-                    mark_seam(mesh.he_edge[h as usize], ends, at_a, at_b);
+            // A quad mesh's next corner is index arithmetic of its own
+            // (`HalfEdgeMesh::next_in_cell` tests the cell size on every call).
+            match mesh.cell_size {
+                4 => simple_seams(
+                    mesh,
+                    indices,
+                    |h| (h & !3) | ((h + 1) & 3),
+                    &mut boundary,
+                    mark_seam,
+                ),
+                _ => {
+                    simple_seams(mesh, indices, |h| mesh.next_in_cell(h), &mut boundary, mark_seam)
                 }
             }
         } else {
@@ -332,6 +325,37 @@ impl Seams {
             }
         }
         Seams { edge_tags, mismatch, early, boundary }
+    }
+}
+
+/// [`Seams::find`] on a mesh with simple edges, with `next_in_cell` the mesh's own: each edge
+/// once, from its lower half-edge, in half-edge order. `h` runs from `a` to `b` and its twin `t`
+/// back, so `a`'s corners are `h` and `t`'s next, `b`'s are `h`'s next and `t` (fewer and more
+/// sequential reads than edge by edge).
+fn simple_seams(
+    mesh: &HalfEdgeMesh,
+    indices: &[u32],
+    next_in_cell: impl Fn(u32) -> u32,
+    boundary: &mut [bool],
+    mut mark_seam: impl FnMut(u32, [u32; 2], bool, bool),
+) {
+    for (h, &t) in mesh.he_next_around_edge.iter().enumerate() {
+        let h = h as u32;
+        if t < h {
+            continue;
+        }
+        let next = next_in_cell(h);
+        if t == h {
+            boundary[mesh.he_from[h as usize] as usize] = true;
+            boundary[mesh.he_from[next as usize] as usize] = true;
+            continue;
+        }
+        let at_a = indices[h as usize] != indices[next_in_cell(t) as usize];
+        let at_b = indices[next as usize] != indices[t as usize];
+        if at_a || at_b {
+            let ends = [mesh.he_from[h as usize], mesh.he_from[next as usize]];
+            mark_seam(mesh.he_edge[h as usize], ends, at_a, at_b);
+        }
     }
 }
 
@@ -691,12 +715,16 @@ impl FVarLevel {
         let split_tag =
             if mode.smooth_boundaries() { tag::MISMATCH | tag::CREASE } else { tag::MISMATCH };
         // The inner edges that follow the halves of parent edges are never seams (see
-        // `edge_tag`).
-        let mut edge_tags = vec![0u8; 2 * ne];
-        for e in 0..ne {
-            let et = self.edge_tag(e as u32);
-            edge_tags[2 * e] = et;
-            edge_tags[2 * e + 1] = et;
+        // `edge_tag`). A last level (`implicit`) needs no edge tags: only a next level reads
+        // them.
+        let edge_tags = if implicit {
+            Vec::new()
+        } else {
+            let mut halves: Vec<u8> = self.edge_tags.iter().flat_map(|&t| [t, t]).collect();
+            halves.resize(2 * ne, 0);
+            halves
+        };
+        for (e, &et) in self.edge_tags.iter().enumerate().take(ne) {
             if et == 0 {
                 continue;
             }
