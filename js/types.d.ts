@@ -159,7 +159,7 @@ export interface ObjMesh extends PolygonMesh {
 
 /**
  * The refined mesh: arrays owned by the caller, fresh or (when passed back as `into`) written
- * over by a later call.
+ * over by a later call, the attribute channels' arrays included.
  */
 export interface SubdivideResult extends PolygonMesh {
   /** A triangle list of the same faces (fans), ready for `gl.drawElements(gl.TRIANGLES, ...)`. */

@@ -15,7 +15,11 @@ pub(super) fn mesh_object(mesh: &PolyMesh) -> JsResult<JsValue> {
 /// The arrays an `into` object lends, read before any work so that its getters run first and
 /// a wrong `into` fails fast. Whether each can be reused is decided when the result is written.
 pub(super) struct Lent {
-    arrays: [JsValue; 4],
+    /// The four result fields ([`RESULT_FIELDS`]), then each lent channel's `array` and
+    /// `indices`.
+    arrays: Vec<JsValue>,
+    /// The names of `into.attributes`' channels, in the order of their slots after the fields.
+    channels: Vec<String>,
 }
 
 /// The result's fields, in the order of [`Lent::arrays`], with the typed array each must be.
@@ -27,10 +31,15 @@ pub(super) const RESULT_FIELDS: [(&str, &str); 4] = [
 ];
 
 impl Lent {
+    /// Nothing lent.
+    pub(super) fn none() -> Lent {
+        Lent { arrays: vec![JsValue::UNDEFINED; RESULT_FIELDS.len()], channels: Vec::new() }
+    }
+
     pub(super) fn read(into: &JsValue) -> Result<Lent, Error> {
-        let mut arrays: [JsValue; 4] = Default::default();
+        let mut lent = Lent::none();
         if into.is_undefined() || into.is_null() {
-            return Ok(Lent { arrays });
+            return Ok(lent);
         }
         if !into.is_object() || is_array(into) {
             return Err(Error::InvalidOption(format!(
@@ -39,30 +48,60 @@ impl Lent {
                 describe(into)
             )));
         }
-        for (slot, (key, kind)) in arrays.iter_mut().zip(RESULT_FIELDS) {
-            let value = Reflect::get(into, &JsValue::from_str(key)).map_err(|e| {
-                Error::InvalidOption(format!("reading into.{key} threw {}", describe(&e)))
-            })?;
+        let get = |object: &JsValue, key: &str, path: &str| {
+            Reflect::get(object, &JsValue::from_str(key)).map_err(|e| {
+                Error::InvalidOption(format!("reading into.{path} threw {}", describe(&e)))
+            })
+        };
+        let of_kind = |value: JsValue, kind: &str| {
             if typed_array_kind(&value).as_deref() == Some(kind) {
-                *slot = value;
+                value
+            } else {
+                JsValue::UNDEFINED
+            }
+        };
+        for (slot, (key, kind)) in lent.arrays.iter_mut().zip(RESULT_FIELDS) {
+            *slot = of_kind(get(into, key, key)?, kind);
+        }
+        // `into.attributes`: each channel's arrays, when they are typed arrays of their kind.
+        let channels = get(into, "attributes", "attributes")?;
+        if channels.is_object() && !is_array(&channels) {
+            let names = Reflect::own_keys(&channels).map_err(|e| {
+                Error::InvalidOption(format!("listing into.attributes threw {}", describe(&e)))
+            })?;
+            for name in names.iter().filter_map(|n| n.as_string()) {
+                let channel = get(&channels, &name, &format!("attributes.{name}"))?;
+                if !channel.is_object() {
+                    continue;
+                }
+                let path = |key: &str| format!("attributes.{name}.{key}");
+                let array = of_kind(get(&channel, "array", &path("array"))?, "Float32Array");
+                let indices = of_kind(get(&channel, "indices", &path("indices"))?, "Uint32Array");
+                lent.arrays.extend([array, indices]);
+                lent.channels.push(name);
             }
         }
-        Ok(Lent { arrays })
+        Ok(lent)
     }
 
-    /// Field `i`'s array when it has `len` elements, is not a view of wasm memory (which the
-    /// writes would corrupt) and is not lent for a later field too (so an array lent for two
-    /// fields serves one at most); else a fresh array. Called once per field, in order.
-    fn take(&mut self, i: usize, len: usize, intrinsics: &Intrinsics) -> JsResult<JsValue> {
-        let lent = std::mem::take(&mut self.arrays[i]);
-        if !lent.is_undefined() {
-            let fits =
-                intrinsics.length.call0(&lent).ok().and_then(|n| n.as_f64()) == Some(len as f64);
-            let ours = intrinsics.buffer.call0(&lent).is_ok_and(|b| b == memory_buffer());
-            let again = self.arrays.iter().any(|other| Object::is(other, &lent));
-            if fits && !ours && !again {
-                return Ok(lent);
-            }
+    /// Slot `i`'s lent array when it can be written over: it has `len` elements, is not a view
+    /// of wasm memory (which the writes would corrupt) and is not lent for another slot too (so
+    /// an array lent for two fields serves one at most). Called once per slot.
+    fn reuse(&mut self, i: usize, len: usize, intrinsics: &Intrinsics) -> Option<JsValue> {
+        let lent = self.arrays.get_mut(i).map(std::mem::take)?;
+        if lent.is_undefined() {
+            return None;
+        }
+        let fits = intrinsics.length.call0(&lent).ok().and_then(|n| n.as_f64()) == Some(len as f64);
+        let ours = intrinsics.buffer.call0(&lent).is_ok_and(|b| b == memory_buffer());
+        let again = self.arrays.iter().any(|other| Object::is(other, &lent));
+        (fits && !ours && !again).then_some(lent)
+    }
+
+    /// Result field `i`'s array: the lent one ([`Lent::reuse`]) or a fresh one.
+    fn field(&mut self, i: usize, len: usize, intrinsics: &Intrinsics) -> JsResult<JsValue> {
+        if let Some(lent) = self.reuse(i, len, intrinsics) {
+            return Ok(lent);
         }
         let len = u32::try_from(len).map_err(|_| {
             JsError::new(&format!("the result's {} is too long", RESULT_FIELDS[i].0))
@@ -72,6 +111,34 @@ impl Lent {
             _ => Uint32Array::new_with_length(len).into(),
         })
     }
+
+    /// The lent `array` of channel `name` when it can be written over with `len` floats.
+    fn channel_array(
+        &mut self,
+        name: &str,
+        len: usize,
+        intrinsics: &Intrinsics,
+    ) -> Option<JsValue> {
+        let slot = self.channel(name)?;
+        self.reuse(slot, len, intrinsics)
+    }
+
+    /// The lent `indices` of channel `name` when they can be written over with `len` indices.
+    fn channel_indices(
+        &mut self,
+        name: &str,
+        len: usize,
+        intrinsics: &Intrinsics,
+    ) -> Option<JsValue> {
+        let slot = self.channel(name)? + 1;
+        self.reuse(slot, len, intrinsics)
+    }
+
+    /// The slot of channel `name`'s `array` (its `indices` are the next), if `into` lent it.
+    fn channel(&self, name: &str) -> Option<usize> {
+        let k = self.channels.iter().position(|n| n == name)?;
+        Some(RESULT_FIELDS.len() + 2 * k)
+    }
 }
 
 /// `subdivide`'s result. The index arrays are copied into JS piece by piece as the result hands
@@ -80,12 +147,12 @@ impl Lent {
 pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsValue> {
     let intrinsics = intrinsics().map_err(|e| JsError::new(&describe(&e)))?;
     let positions = refined.positions();
-    let mut out = Output::new(lent.take(0, positions.len(), &intrinsics)?, &intrinsics);
+    let mut out = Output::new(lent.field(0, positions.len(), &intrinsics)?, &intrinsics);
     // SAFETY: the view is used at once, before anything can allocate (and so grow the memory).
     out.push(positions, |chunk| unsafe { Float32Array::view(chunk) }.into());
-    let mut indices = Output::new(lent.take(1, refined.num_indices(), &intrinsics)?, &intrinsics);
-    let sizes = lent.take(2, refined.num_faces(), &intrinsics)?;
-    let triangles = lent.take(3, refined.num_triangle_indices(), &intrinsics)?;
+    let mut indices = Output::new(lent.field(1, refined.num_indices(), &intrinsics)?, &intrinsics);
+    let sizes = lent.field(2, refined.num_faces(), &intrinsics)?;
+    let triangles = lent.field(3, refined.num_triangle_indices(), &intrinsics)?;
     let mut triangles = Output::new(triangles, &intrinsics);
     // Face-varying indices that are the faces' own but near seams come with the faces' pieces.
     let (attributes, seam_corners) = refined.attributes_in_pieces();
@@ -94,7 +161,10 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     let mut in_pieces: Vec<_> = seam_corners
         .iter()
         .map(|(i, seams)| {
-            let array = Uint32Array::new_with_length(num_indices).into();
+            let name = attributes.get(*i).map_or("", |a| a.name.as_str());
+            let array = lent
+                .channel_indices(name, num_indices as usize, &intrinsics)
+                .unwrap_or_else(|| Uint32Array::new_with_length(num_indices).into());
             (*i, seams, Output::new(array, &intrinsics))
         })
         .collect();
@@ -130,30 +200,53 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
         for (i, _, out) in in_pieces {
             made.push((i, out.finish()?));
         }
-        set_field(&object, "attributes", &channels_object_with(attributes, made)?)?;
+        let channels = channels_object_with(attributes, made, &mut lent, &intrinsics)?;
+        set_field(&object, "attributes", &channels)?;
     }
     Ok(object.into())
 }
 
 /// `{ name: { array, itemSize, indices? } }`: fresh arrays, `indices` for face-varying channels.
 pub(super) fn channels_object(attributes: &[Attribute]) -> JsResult<JsValue> {
-    channels_object_with(attributes, Vec::new())
+    let intrinsics = intrinsics().map_err(|e| JsError::new(&describe(&e)))?;
+    channels_object_with(attributes, Vec::new(), &mut Lent::none(), &intrinsics)
 }
 
-/// [`channels_object`] with the `indices` of the attributes `made` names already in JS.
+/// [`channels_object`] with the `indices` of the attributes `made` names already in JS, and
+/// the arrays `lent` lends for the others where they fit (else fresh copies, one `slice` each).
 fn channels_object_with(
     attributes: &[Attribute],
     made: Vec<(usize, JsValue)>,
+    lent: &mut Lent,
+    intrinsics: &Intrinsics,
 ) -> JsResult<JsValue> {
     let channels = Object::new();
     for (k, a) in attributes.iter().enumerate() {
         let channel = Object::new();
-        set_field(&channel, "array", &Float32Array::from(&a.values[..]))?;
+        let array = match lent.channel_array(&a.name, a.values.len(), intrinsics) {
+            Some(array) => {
+                let mut out = Output::new(array, intrinsics);
+                // SAFETY: as for the positions in `refined_object`: used before anything
+                // allocates.
+                out.push(&a.values, |chunk| unsafe { Float32Array::view(chunk) }.into());
+                out.finish()?
+            }
+            None => Float32Array::from(&a.values[..]).into(),
+        };
+        set_field(&channel, "array", &array)?;
         set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
         if let Some((_, indices)) = made.iter().find(|(i, _)| *i == k) {
             set_field(&channel, "indices", indices)?;
         } else if let Some(indices) = &a.indices {
-            set_field(&channel, "indices", &Uint32Array::from(&indices[..]))?;
+            let array = match lent.channel_indices(&a.name, indices.len(), intrinsics) {
+                Some(array) => {
+                    let mut out = Output::new(array, intrinsics);
+                    out.push(indices, u32_view);
+                    out.finish()?
+                }
+                None => Uint32Array::from(&indices[..]).into(),
+            };
+            set_field(&channel, "indices", &array)?;
         }
         set_field(&channels, &a.name, &channel)?;
     }

@@ -238,3 +238,98 @@ fn predicted_counts_with_and_without_base_mesh() {
     }
     assert_mentions(&thrown(base.predict_counts(&levels_typo())), &["'levels'"]);
 }
+
+/// The cube with its demo UV layout (a face-varying `uv`, seams on 7 edges) and a vertex-varying
+/// `color`, as a JS mesh.
+fn textured_cube() -> JsValue {
+    let mesh = ok(subsurf::wasm::shape(&"cube".into()));
+    let color = Float32Array::from(&cube_arrays().0[..]);
+    let channels = field(&mesh, "attributes");
+    let channel = object(&[("array", color.into()), ("itemSize", JsValue::from_f64(3.0))]);
+    Reflect::set(&channels, &"color".into(), &channel).unwrap();
+    mesh
+}
+
+/// The channels' arrays of a result, as `(name, key)` and the array.
+const CHANNEL_ARRAYS: [(&str, &str); 3] = [("uv", "array"), ("uv", "indices"), ("color", "array")];
+
+fn channel_field(result: &JsValue, name: &str, key: &str) -> JsValue {
+    field(&field(&field(result, "attributes"), name), key)
+}
+
+/// A channel array's numbers, whichever of the two types it is.
+fn numbers(result: &JsValue, name: &str, key: &str) -> Vec<f64> {
+    let channel = field(&field(result, "attributes"), name);
+    match key {
+        "indices" => u32s(&channel, key).into_iter().map(f64::from).collect(),
+        _ => f32s(&channel, key).into_iter().map(f64::from).collect(),
+    }
+}
+
+/// `into.attributes` lends the channels' arrays too: written over when their type and length
+/// fit (the face-varying indices of a last Catmull-Clark level are made piece by piece, those
+/// of a level with a hole are listed), fresh otherwise; the values are a plain call's, bit for
+/// bit.
+#[wasm_bindgen_test]
+fn into_attribute_arrays_are_written_over_when_they_fit() {
+    let mesh = textured_cube();
+    let holed = object(&[("levels", 1.into()), ("holes", Uint32Array::from(&[5u32][..]).into())]);
+    for options in [levels(2.0), holed] {
+        let first = ok(subdivide(&mesh, &options));
+        let second = into(&mesh, &options, &first);
+        let expected = ok(subdivide(&mesh, &options));
+        for (name, key) in CHANNEL_ARRAYS {
+            let reused =
+                same(&channel_field(&second, name, key), &channel_field(&first, name, key));
+            assert!(reused, "{name}.{key} reused");
+            assert_eq!(numbers(&second, name, key), numbers(&expected, name, key), "{name}.{key}");
+        }
+        assert_same_values(&second, &expected, "with channels");
+    }
+    // Another level: other lengths, fresh arrays, and the lent ones are left alone.
+    let first = ok(subdivide(&mesh, &levels(1.0)));
+    let before: Vec<_> = CHANNEL_ARRAYS.iter().map(|(n, k)| numbers(&first, n, k)).collect();
+    let second = into(&mesh, &levels(2.0), &first);
+    for ((name, key), before) in CHANNEL_ARRAYS.into_iter().zip(before) {
+        let reused = same(&channel_field(&second, name, key), &channel_field(&first, name, key));
+        assert!(!reused, "{name}.{key} not reused");
+        assert_eq!(numbers(&first, name, key), before, "{name}.{key} untouched");
+    }
+}
+
+/// A channel array lent for two fields serves one at most, one of another type is not used, and
+/// a hostile `into.attributes` gives an error naming the place (a throwing getter) or fresh
+/// arrays; the result is always the plain call's.
+#[wasm_bindgen_test]
+fn into_attribute_arrays_lent_twice_or_wrong_are_not_reused() {
+    use super::bad_inputs::js;
+    let mesh = textured_cube();
+    let expected = ok(subdivide(&mesh, &levels(1.0)));
+    let indices = field(&expected, "indices");
+    let uv = field(&field(&expected, "attributes"), "uv");
+    // The uv indices have the faces' length: the same array lent for both serves one.
+    let shared = Uint32Array::new_with_length(u32s(&expected, "indices").len() as u32);
+    let uv_lent = object(&[("indices", shared.clone().into()), ("array", indices.clone())]);
+    let lent =
+        object(&[("indices", shared.clone().into()), ("attributes", object(&[("uv", uv_lent)]))]);
+    let out = into(&mesh, &levels(1.0), &lent);
+    let out_uv = field(&field(&out, "attributes"), "uv");
+    let reused =
+        [same(&field(&out, "indices"), &shared), same(&field(&out_uv, "indices"), &shared)];
+    assert_eq!(reused.iter().filter(|&&r| r).count(), 1, "{reused:?}");
+    assert!(!same(&field(&out_uv, "array"), &indices), "a Uint32Array is no uv array");
+    assert_same_values(&out, &expected, "lent twice");
+    assert_eq!(f32s(&out_uv, "array"), f32s(&uv, "array"));
+    assert_eq!(u32s(&out_uv, "indices"), u32s(&uv, "indices"));
+
+    let thrower = "return { attributes: { uv: { get array() { throw new Error('boom'); } } } };";
+    let m = thrown(subsurf::wasm::subdivide(&mesh, &levels(1.0), &js(thrower)));
+    assert_mentions(&m, &["reading into.attributes.uv.array threw Error 'boom'"]);
+    let proxy = "return { attributes: new Proxy({}, { ownKeys() { throw new Error('keys'); } }) };";
+    let m = thrown(subsurf::wasm::subdivide(&mesh, &levels(1.0), &js(proxy)));
+    assert_mentions(&m, &["listing into.attributes threw Error 'keys'"]);
+    for body in ["return { attributes: 5 };", "return { attributes: { uv: 'no' } };"] {
+        let out = into(&mesh, &levels(1.0), &js(body));
+        assert_same_values(&out, &expected, body);
+    }
+}
