@@ -8,7 +8,7 @@
 use std::time::{Duration, Instant};
 use subsurf::attributes::Attribute;
 use subsurf::scheme::{subdivide_mesh_with_tags, subdivide_with_attributes};
-use subsurf::shapes::{torus, torus_triangles};
+use subsurf::shapes::{torus, torus_triangles, torus_uv};
 use subsurf::{subdivide_with_tags, Crease, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 fn median(mut f: impl FnMut() -> Duration) -> Duration {
@@ -100,31 +100,6 @@ fn main() {
     attribute_cost(&quads);
 }
 
-/// The (u, v) grid of a torus of `rings` × `segments` quads made as [`torus`] makes them: one
-/// value per grid point of `(rings + 1) × (segments + 1)`, so the two closing seams are
-/// face-varying seams.
-fn torus_uvs(rings: u32, segments: u32) -> Attribute {
-    let mut values = Vec::with_capacity(2 * ((rings + 1) * (segments + 1)) as usize);
-    for i in 0..=rings {
-        for j in 0..=segments {
-            values.extend_from_slice(&[i as f32 / rings as f32, j as f32 / segments as f32]);
-        }
-    }
-    let value = |i: u32, j: u32| i * (segments + 1) + j;
-    let mut indices = Vec::with_capacity(4 * (rings * segments) as usize);
-    for i in 0..rings {
-        for j in 0..segments {
-            indices.extend_from_slice(&[
-                value(i, j),
-                value(i + 1, j),
-                value(i + 1, j + 1),
-                value(i, j + 1),
-            ]);
-        }
-    }
-    Attribute::face_varying("uv", 2, values, indices)
-}
-
 /// What attribute channels cost: Catmull-Clark on the 1M-quad torus at level 1, the whole
 /// call, plain, with a vertex-varying `color` of 3 floats, and with that colour and a
 /// face-varying `uv` (seams along both closing loops), alternating (the attributes issue's
@@ -132,7 +107,7 @@ fn torus_uvs(rings: u32, segments: u32) -> Attribute {
 fn attribute_cost(quads: &PolyMesh) {
     let color: Vec<f32> = (0..quads.positions.len()).map(|i| (i % 7) as f32 / 7.0).collect();
     let color = Attribute::vertex("color", 3, color);
-    let both = [torus_uvs(1000, 1000), color.clone()];
+    let both = [torus_uv(1000, 1000), color.clone()];
     let options = Options::new(Scheme::CatmullClark, 1);
     let none = Tags::default();
     let (mut plain, mut colored, mut textured) = (Vec::new(), Vec::new(), Vec::new());

@@ -49,6 +49,28 @@ pub fn torus(rings: u32, segments: u32, major: f32, minor: f32) -> PolyMesh {
     PolyMesh { positions, indices, face_sizes: vec![4; (rings * segments) as usize] }
 }
 
+/// The `(ring, tube)` parameter grid of [`torus`] over `[0, 1]²` as a face-varying `uv`: one
+/// value per grid point of `(rings + 1) × (segments + 1)`, so that the two closing loops are
+/// seams (the benchmarks' textured torus; `bench/torus.mjs` makes the same).
+pub fn torus_uv(rings: u32, segments: u32) -> crate::attributes::Attribute {
+    let (rings, segments) = (rings.max(3), segments.max(3));
+    let mut values = Vec::with_capacity(2 * ((rings + 1) * (segments + 1)) as usize);
+    for i in 0..=rings {
+        for j in 0..=segments {
+            values.extend_from_slice(&[i as f32 / rings as f32, j as f32 / segments as f32]);
+        }
+    }
+    let value = |i: u32, j: u32| i * (segments + 1) + j;
+    let mut indices = Vec::with_capacity(4 * (rings * segments) as usize);
+    for i in 0..rings {
+        for j in 0..segments {
+            let quad = [value(i, j), value(i + 1, j), value(i + 1, j + 1), value(i, j + 1)];
+            indices.extend_from_slice(&quad);
+        }
+    }
+    crate::attributes::Attribute::face_varying("uv", 2, values, indices)
+}
+
 /// The same torus with every quad split into two triangles along its `v(i,j)–v(i+1,j+1)`
 /// diagonal: `2 · rings · segments` triangles.
 pub fn torus_triangles(rings: u32, segments: u32, major: f32, minor: f32) -> PolyMesh {

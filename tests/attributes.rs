@@ -429,3 +429,22 @@ fn a_result_is_send_and_sync() {
     fn shared<T: Send + Sync>() {}
     shared::<subsurf::refined::Refined<'static>>();
 }
+
+/// The benchmarks' textured torus (`shapes::torus_uv`): one value per point of the
+/// `(rings + 1) × (segments + 1)` parameter grid, so the two closing loops are seams, and they
+/// stay seams: after a level the values are those of the refined grid, `(2 rings + 1) ×
+/// (2 segments + 1)` (a vertex on one loop has two values, the one where they cross four).
+#[test]
+fn the_benchmark_torus_uv_is_cut_along_both_loops() {
+    use subsurf::shapes::{torus, torus_uv};
+    let (rings, segments) = (6, 4);
+    let uv = torus_uv(rings, segments);
+    assert_eq!(uv.len(), 7 * 5);
+    assert_eq!(uv.indices.as_ref().map(Vec::len), Some(4 * 6 * 4));
+    let mesh = torus(rings, segments, 1.0, 0.25);
+    let options = Options::new(Scheme::CatmullClark, 1);
+    let (out, channels) = subdivide_with_attributes(&mesh, &[uv], &options, &Tags::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.num_vertices(), 12 * 8);
+    assert_eq!(channels[0].len(), 13 * 9);
+}
