@@ -296,7 +296,7 @@ impl Seams {
                 4 => simple_seams(
                     mesh,
                     indices,
-                    |h| (h & !3) | ((h + 1) & 3),
+                    HalfEdgeMesh::next_in_quad,
                     &mut boundary,
                     mark_seam,
                 ),

@@ -445,10 +445,17 @@ impl HalfEdgeMesh {
             [self.vertex_offsets[v] as usize..self.vertex_offsets[v + 1] as usize]
     }
 
+    /// The next corner of half-edge `h` in a mesh of quads only (`cell_size` 4), without
+    /// looking at the mesh: for loops that test the cell size once, not on every call.
+    #[inline(always)]
+    pub(crate) const fn next_in_quad(h: u32) -> u32 {
+        (h & !3) | ((h + 1) & 3)
+    }
+
     #[inline]
     pub(crate) fn next_in_cell(&self, h: u32) -> u32 {
         match self.cell_size {
-            4 => return (h & !3) | ((h + 1) & 3),
+            4 => return Self::next_in_quad(h),
             3 => return if h % 3 == 2 { h - 2 } else { h + 1 },
             _ => {}
         }

@@ -112,30 +112,21 @@ impl Lent {
         })
     }
 
-    /// The lent `array` of channel `name` when it can be written over with `len` floats.
-    fn channel_array(
+    /// The lent `key` (0 `array`, 1 `indices`) of channel `name` when it can be written over
+    /// with `len` elements.
+    fn channel(
         &mut self,
         name: &str,
+        key: usize,
         len: usize,
         intrinsics: &Intrinsics,
     ) -> Option<JsValue> {
-        let slot = self.channel(name)?;
-        self.reuse(slot, len, intrinsics)
-    }
-
-    /// The lent `indices` of channel `name` when they can be written over with `len` indices.
-    fn channel_indices(
-        &mut self,
-        name: &str,
-        len: usize,
-        intrinsics: &Intrinsics,
-    ) -> Option<JsValue> {
-        let slot = self.channel(name)? + 1;
+        let slot = self.channel_slot(name)? + key;
         self.reuse(slot, len, intrinsics)
     }
 
     /// The slot of channel `name`'s `array` (its `indices` are the next), if `into` lent it.
-    fn channel(&self, name: &str) -> Option<usize> {
+    fn channel_slot(&self, name: &str) -> Option<usize> {
         let k = self.channels.iter().position(|n| n == name)?;
         Some(RESULT_FIELDS.len() + 2 * k)
     }
@@ -148,8 +139,7 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
     let intrinsics = intrinsics().map_err(|e| JsError::new(&describe(&e)))?;
     let positions = refined.positions();
     let mut out = Output::new(lent.field(0, positions.len(), &intrinsics)?, &intrinsics);
-    // SAFETY: the view is used at once, before anything can allocate (and so grow the memory).
-    out.push(positions, |chunk| unsafe { Float32Array::view(chunk) }.into());
+    out.push(positions, f32_view);
     let mut indices = Output::new(lent.field(1, refined.num_indices(), &intrinsics)?, &intrinsics);
     let sizes = lent.field(2, refined.num_faces(), &intrinsics)?;
     let triangles = lent.field(3, refined.num_triangle_indices(), &intrinsics)?;
@@ -163,7 +153,7 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
         .map(|(i, seams)| {
             let name = attributes.get(*i).map_or("", |a| a.name.as_str());
             let array = lent
-                .channel_indices(name, num_indices as usize, &intrinsics)
+                .channel(name, 1, num_indices as usize, &intrinsics)
                 .unwrap_or_else(|| Uint32Array::new_with_length(num_indices).into());
             (*i, seams, Output::new(array, &intrinsics))
         })
@@ -223,38 +213,48 @@ fn channels_object_with(
     let channels = Object::new();
     for (k, a) in attributes.iter().enumerate() {
         let channel = Object::new();
-        let array = match lent.channel_array(&a.name, a.values.len(), intrinsics) {
-            Some(array) => {
-                let mut out = Output::new(array, intrinsics);
-                // SAFETY: as for the positions in `refined_object`: used before anything
-                // allocates.
-                out.push(&a.values, |chunk| unsafe { Float32Array::view(chunk) }.into());
-                out.finish()?
-            }
-            None => Float32Array::from(&a.values[..]).into(),
-        };
+        let array = lent.channel(&a.name, 0, a.values.len(), intrinsics);
+        let array = copied(array, &a.values, f32_view, |v| Float32Array::from(v), intrinsics)?;
         set_field(&channel, "array", &array)?;
         set_field(&channel, "itemSize", &JsValue::from(a.item_size as u32))?;
         if let Some((_, indices)) = made.iter().find(|(i, _)| *i == k) {
             set_field(&channel, "indices", indices)?;
         } else if let Some(indices) = &a.indices {
-            let array = match lent.channel_indices(&a.name, indices.len(), intrinsics) {
-                Some(array) => {
-                    let mut out = Output::new(array, intrinsics);
-                    out.push(indices, u32_view);
-                    out.finish()?
-                }
-                None => Uint32Array::from(&indices[..]).into(),
-            };
-            set_field(&channel, "indices", &array)?;
+            let array = lent.channel(&a.name, 1, indices.len(), intrinsics);
+            set_field(
+                &channel,
+                "indices",
+                &copied(array, indices, u32_view, |v| Uint32Array::from(v), intrinsics)?,
+            )?;
         }
         set_field(&channels, &a.name, &channel)?;
     }
     Ok(channels.into())
 }
 
+/// `values` in JS: written over `lent` (through `view` of them), or else a fresh copy made by
+/// `fresh` (one `slice`, which costs less than a fresh array filled). `view` is the typed array
+/// view of wasm memory ([`f32_view`], [`u32_view`]).
+fn copied<T, A: Into<JsValue>>(
+    lent: Option<JsValue>,
+    values: &[T],
+    view: impl Fn(&[T]) -> JsValue,
+    fresh: impl Fn(&[T]) -> A,
+    intrinsics: &Intrinsics,
+) -> JsResult<JsValue> {
+    let Some(lent) = lent else { return Ok(fresh(values).into()) };
+    let mut out = Output::new(lent, intrinsics);
+    out.push(values, view);
+    out.finish()
+}
+
+pub(super) fn f32_view(chunk: &[f32]) -> JsValue {
+    // SAFETY: the view is used at once, before anything can allocate (and so grow the memory).
+    unsafe { Float32Array::view(chunk) }.into()
+}
+
 pub(super) fn u32_view(chunk: &[u32]) -> JsValue {
-    // SAFETY: as for the positions in `refined_object`: used before anything allocates.
+    // SAFETY: as for `f32_view`.
     unsafe { Uint32Array::view(chunk) }.into()
 }
 
