@@ -6,7 +6,10 @@
 // issue's target for uv + color is at most 1.6; the medians catch the VM's spikes). Given
 // package directories (pkg/ of two worktrees, each from scripts/build-pkg.sh), it alternates
 // them too and prints one line per package: the way to tell whether a change helped.
-//   node bench/attributes.mjs [ROUNDS] [PKG ...]
+// INTO=1 passes each case's previous result as `into`, so that every call writes over arrays
+// it already has (a per-frame caller's steady state) instead of making fresh ones, whose
+// first-touch page faults are most of a call on our VMs.
+//   [INTO=1] node bench/attributes.mjs [ROUNDS] [PKG ...]
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
@@ -30,12 +33,16 @@ const cases = {
 };
 
 const times = packages.map(() => Object.fromEntries(Object.keys(cases).map((name) => [name, []])));
+const reuse = Boolean(process.env.INTO);
+const previous = packages.map(() => ({}));
 for (let round = 0; round < rounds; round++) {
   for (const [name, mesh] of Object.entries(cases)) {
     packages.forEach(({ subdivide }, k) => {
+      const into = reuse ? previous[k][name] : undefined;
       const start = performance.now();
-      subdivide(mesh, { levels: 1 });
+      const result = subdivide(mesh, { levels: 1 }, into);
       const t = performance.now() - start;
+      if (reuse) previous[k][name] = result;
       if (round > 0) times[k][name].push(t);
     });
   }
@@ -52,5 +59,6 @@ packages.forEach((_, k) => {
     return `${name} best ${best.toFixed(0)} median ${median.toFixed(0)} ms${ratio}`;
   });
   const label = packages.length > 1 ? `${dirs[k]}: ` : '';
-  console.log(`${label}catmull-clark 1M quads L1: ${parts.join(' | ')}`);
+  const mode = reuse ? ' (into: arrays reused)' : '';
+  console.log(`${label}catmull-clark 1M quads L1${mode}: ${parts.join(' | ')}`);
 });
