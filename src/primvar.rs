@@ -449,23 +449,27 @@ impl<const W: usize> Points<Vec<[f32; W]>> for Unpacking {
         // A run of points is summed into a buffer that stays in the L1 cache, then taken
         // apart column by column: a point at a time cost a width dispatch, a capacity check and
         // a store per channel and point (about 100 M instructions of a textured 1M-quad split).
-        const RUN: u32 = 64;
-        let mut buffer = [[0.0f32; W]; RUN as usize];
+        let mut buffer = [[0.0f32; W]; RUN];
         let mut start = 0;
         while start < count {
-            let run = &mut buffer[..(count - start).min(RUN) as usize];
+            let run = &mut buffer[..(count - start).min(RUN as u32) as usize];
             for (i, point) in (start..).zip(run.iter_mut()) {
                 *point = sum.eval(|w| rule(i, w));
             }
             self.extend_from_points(run);
-            start += RUN;
+            start += RUN as u32;
         }
     }
 
     fn extend_from(&mut self, other: &Vec<[f32; W]>) {
-        self.extend_from_points(other);
+        for run in other.chunks(RUN) {
+            self.extend_from_points(run);
+        }
     }
 }
+
+/// The points [`Unpacking`] sums before it takes them apart: few enough to stay in the L1 cache.
+const RUN: usize = 64;
 
 /// Appends a channel's values (`(at, width, values)` of [`Unpacking`]) from every packed point
 /// of `points`, a loop of constant width for each width a packed point holds.
@@ -478,9 +482,13 @@ fn extend_values<const W: usize>(
         points: &[[f32; W]],
         at: usize,
     ) {
-        values.reserve(points.len() * N);
-        for point in points {
-            values.extend_from_slice(&take::<W, N>(point, at));
+        // The run's floats zeroed, then written over: both in the L1 cache (a run is short),
+        // and the copy loop has no capacity check per point.
+        let start = values.len();
+        values.resize(start + points.len() * N, 0.0);
+        let (to, _) = values[start..].as_chunks_mut::<N>();
+        for (to, point) in to.iter_mut().zip(points) {
+            *to = take::<W, N>(point, at);
         }
     }
     match *width {
