@@ -3,19 +3,24 @@
 //! for an instruction count that does not drift with the shared machine's load (timings here
 //! vary by 10-30 % from run to run). `bench/callgrind.sh` runs it under callgrind.
 //!
-//!     cargo run --release --example attribute_call -- [plain|color|uv-color] [CALLS]
+//!     cargo run --release --example attribute_call -- [plain|color|uv-color|mix] [CALLS]
+//!
+//! `mix` runs the three cases in turn, as `cargo bench --bench table` does
+//! (`SUBSURF_BENCH_ATTRIBUTES_ONLY`): the allocator's state between calls, and so the page faults
+//! of each, is then the benchmark's. Each call prints its minor page faults (Linux).
 use subsurf::attributes::Attribute;
 use subsurf::scheme::subdivide_with_attributes;
 use subsurf::shapes::{torus, torus_uv};
 use subsurf::{Options, Scheme, Tags};
 
 fn main() {
-    let (uv, colored) = match std::env::args().nth(1).as_deref() {
-        None | Some("uv-color") => (true, true),
-        Some("color") => (false, true),
-        Some("plain") => (false, false),
+    let cases: &[(bool, bool)] = match std::env::args().nth(1).as_deref() {
+        None | Some("uv-color") => &[(true, true)],
+        Some("color") => &[(false, true)],
+        Some("plain") => &[(false, false)],
+        Some("mix") => &[(false, false), (false, true), (true, true)],
         Some(other) => {
-            eprintln!("attribute_call: unknown case '{other}'; use plain, color or uv-color");
+            eprintln!("attribute_call: unknown case '{other}'; use plain, color, uv-color or mix");
             std::process::exit(2);
         }
     };
@@ -23,20 +28,35 @@ fn main() {
     let calls: usize = std::env::args().nth(2).and_then(|n| n.parse().ok()).unwrap_or(1);
     let quads = torus(1000, 1000, 1.0, 0.25);
     let color: Vec<f32> = (0..quads.positions.len()).map(|i| (i % 7) as f32 / 7.0).collect();
-    let mut channels = Vec::new();
-    if uv {
-        channels.push(torus_uv(1000, 1000));
-    }
-    if colored {
-        channels.push(Attribute::vertex("color", 3, color));
-    }
+    let (uv, color) = (torus_uv(1000, 1000), Attribute::vertex("color", 3, color));
     let options = Options::new(Scheme::CatmullClark, 1);
     for _ in 0..calls {
-        let start = std::time::Instant::now();
-        let (mesh, attributes) =
-            subdivide_with_attributes(&quads, &channels, &options, &Tags::default())
-                .unwrap_or_else(|e| panic!("{e}"));
-        let ms = start.elapsed().as_secs_f64() * 1e3;
-        println!("{} vertices, {} channels, {ms:.1} ms", mesh.num_vertices(), attributes.len());
+        for &(textured, colored) in cases {
+            let mut channels = Vec::new();
+            if textured {
+                channels.push(uv.clone());
+            }
+            if colored {
+                channels.push(color.clone());
+            }
+            let faults = minor_faults();
+            let start = std::time::Instant::now();
+            let (mesh, attributes) =
+                subdivide_with_attributes(&quads, &channels, &options, &Tags::default())
+                    .unwrap_or_else(|e| panic!("{e}"));
+            let (vertices, count) = (mesh.num_vertices(), attributes.len());
+            drop((mesh, attributes));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let faults = minor_faults().saturating_sub(faults);
+            println!("{vertices} vertices, {count} channels, {ms:.1} ms, {faults} page faults");
+        }
     }
+}
+
+/// Minor page faults of this process so far (0 where /proc is not there).
+fn minor_faults() -> u64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Field 10; the command name (field 2) is in parentheses and may hold spaces.
+    let after_name = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    after_name.split_whitespace().nth(7).and_then(|n| n.parse().ok()).unwrap_or(0)
 }

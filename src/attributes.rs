@@ -25,6 +25,7 @@
 use crate::error::{Error, Result};
 use crate::fvar::{FVarChannel, SeamCorners};
 use crate::primvar::Rows;
+use std::borrow::Cow;
 
 /// The most floats one value of a channel may have.
 pub const MAX_ITEM_SIZE: usize = 16;
@@ -237,7 +238,7 @@ pub struct FVarLayout {
 /// The face-varying channels of `attributes`, those with equal indices side by side up to
 /// [`MAX_ITEM_SIZE`] floats (their rows up to the shortest channel's count, which every index
 /// is below).
-pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLayout) {
+pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel<'_>>, FVarLayout) {
     let mut layout = FVarLayout::default();
     let mut group_indices: Vec<&[u32]> = Vec::new();
     for (i, a) in attributes.iter().enumerate() {
@@ -262,8 +263,16 @@ pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel>, FVarLay
         .map(|(members, indices)| {
             let width: usize = members.iter().map(|m| m.2).sum();
             let count = members.iter().map(|m| attributes[m.0].len()).min().unwrap_or(0);
-            let values = interleave(attributes, members, count, width);
-            FVarChannel::new(width, values, indices.to_vec())
+            // A lone channel's values and the indices are borrowed: the first level only reads
+            // them.
+            let values = match members[..] {
+                [(i, _, size, _)] => {
+                    let source = &attributes[i].values;
+                    Cow::Borrowed(&source[..(count * size).min(source.len())])
+                }
+                _ => Cow::Owned(interleave(attributes, members, count, width)),
+            };
+            FVarChannel::new(width, values, Cow::Borrowed(indices))
         })
         .collect();
     (channels, layout)
@@ -284,7 +293,7 @@ pub struct Channels {
 pub fn unpack_all(
     rows: Rows,
     layout: &RowLayout,
-    channels: Vec<FVarChannel>,
+    channels: Vec<FVarChannel<'_>>,
     fvar_layout: &FVarLayout,
     count: usize,
 ) -> Channels {
@@ -294,7 +303,7 @@ pub fn unpack_all(
         slots[*i] = Some(a);
     }
     for (channel, members) in channels.into_iter().zip(&fvar_layout.groups) {
-        let mut level = channel.level;
+        let mut level = channel.into_level();
         let width = level.width;
         if let Some(seams) = level.seam_corners.take() {
             seam_corners.extend(members.iter().map(|m| (m.0, seams.clone())));

@@ -341,7 +341,7 @@ pub(crate) fn build_stencils(
 
 /// The `finish` of calls without attribute channels: one function item, so that every such
 /// call shares one instance of the level loop.
-fn no_attributes(_: Rows, _: Vec<FVarChannel>) -> Channels {
+fn no_attributes(_: Rows, _: Vec<FVarChannel<'_>>) -> Channels {
     Channels::default()
 }
 
@@ -463,7 +463,7 @@ fn check_limit(options: &Options) -> Result<()> {
 }
 
 /// Leaves out the faces of `poly` that `tags` makes holes, with their face-varying corners.
-fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) -> PolyMesh {
+fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel<'_>]) -> PolyMesh {
     let sizes = std::mem::take(&mut poly.face_sizes);
     let indices = std::mem::take(&mut poly.indices);
     let (mut start, mut kept) = (0usize, Vec::with_capacity(indices.len()));
@@ -472,8 +472,8 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
         let corners = start..start + n as usize;
         if !tags.is_hole(f as u32) {
             kept.extend_from_slice(&indices[corners.clone()]);
-            for (out, channel) in kept_corners.iter_mut().zip(fvar.iter()) {
-                out.extend_from_slice(&channel.level.corner_values[corners.clone()]);
+            for (out, channel) in kept_corners.iter_mut().zip(fvar.iter_mut()) {
+                out.extend_from_slice(&channel.level_mut().corner_values[corners.clone()]);
             }
             poly.face_sizes.push(n);
         }
@@ -481,7 +481,7 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
     }
     poly.indices = kept;
     for (channel, corners) in fvar.iter_mut().zip(kept_corners) {
-        channel.level.corner_values = corners;
+        channel.level_mut().corner_values = corners;
     }
     poly
 }
@@ -496,13 +496,13 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel]) ->
 /// positions and normals are then left to the table (the result keeps the last level's
 /// positions and has no normals), and with `normals` the tangents' rows are written there.
 #[allow(clippy::too_many_arguments)]
-fn refine_levels<'a, V: Primvar>(
+fn refine_levels<'a, 'f, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
     rows: V,
-    fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(V, Vec<FVarChannel>) -> Channels,
+    fvar: Vec<FVarChannel<'f>>,
+    finish: impl FnOnce(V, Vec<FVarChannel<'f>>) -> Channels,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
@@ -562,13 +562,13 @@ pub(crate) struct TangentRows<V> {
 /// [`refine_levels`] without the face normals, telling `progress` after each level but the
 /// last (which the caller tells once the result is whole).
 #[allow(clippy::too_many_arguments)]
-fn run_levels<'a, V: Primvar>(
+fn run_levels<'a, 'f, V: Primvar>(
     base: Cow<'a, HalfEdgeMesh>,
     options: &Options,
     tags: &Tags,
     mut rows: V,
-    mut fvar: Vec<FVarChannel>,
-    finish: impl FnOnce(V, Vec<FVarChannel>) -> Channels,
+    mut fvar: Vec<FVarChannel<'f>>,
+    finish: impl FnOnce(V, Vec<FVarChannel<'f>>) -> Channels,
     tangent_rows: Option<&mut Option<TangentRows<V>>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
@@ -728,7 +728,7 @@ fn run_levels<'a, V: Primvar>(
             (Scheme::Sqrt3, _) => {
                 let refine_boundary = sqrt3_refines_boundary(&options.schemes, level);
                 let rules = Sqrt3 { boundary };
-                let fvar_level = |fvar: &mut Vec<FVarChannel>, corners: &[u32]| {
+                let fvar_level = |fvar: &mut Vec<FVarChannel<'_>>, corners: &[u32]| {
                     for channel in fvar.iter_mut() {
                         channel.refine_sqrt3(&mesh, &rules, refine_boundary, fvar_mode, corners);
                     }
@@ -759,7 +759,7 @@ fn run_levels<'a, V: Primvar>(
                 let child = HalfEdgeMesh::from_poly(&poly)?;
                 if let Some((parent_vertices, edge_base)) = renumber {
                     for channel in fvar.iter_mut().filter(|c| c.analysed) {
-                        channel.level.renumber_edge_tags(&child, parent_vertices, edge_base);
+                        channel.level_mut().renumber_edge_tags(&child, parent_vertices, edge_base);
                     }
                 }
                 Cow::Owned(child)
@@ -805,7 +805,7 @@ fn run_levels<'a, V: Primvar>(
             }
             let linear = fvar_mode == FVarLinear::All;
             for channel in fvar.iter_mut().filter(|c| c.analysed) {
-                crate::limit::limit_face_varying(&mesh, &rules, &mut channel.level, linear);
+                crate::limit::limit_face_varying(&mesh, &rules, channel.level_mut(), linear);
             }
         }
         if let Some(out) = tangent_rows {
@@ -863,9 +863,9 @@ enum Level<'a, V> {
 
 /// What one level of a primal split carries besides the mesh: the vertex-varying rows, the
 /// face-varying channels (refined in place), the level's sharpness, and whether it is the last.
-struct Primal<'r, 's, V> {
+struct Primal<'r, 's, 'f, V> {
     rows: &'r V,
-    fvar: &'r mut Vec<FVarChannel>,
+    fvar: &'r mut Vec<FVarChannel<'f>>,
     sharp: LevelSharpness<'s>,
     mode: crate::options::FVarLinear,
     last: bool,
@@ -874,7 +874,7 @@ struct Primal<'r, 's, V> {
     positions: bool,
 }
 
-impl<V: Primvar> Primal<'_, '_, V> {
+impl<V: Primvar> Primal<'_, '_, '_, V> {
     /// One level of a primal split `S` with `rules` (`linear` for bilinear and midpoint, whose
     /// face-varying values are linear too), with the level's tags when it follows tags: the
     /// last level leaves out the children of holes (and keeps the faces implicit where it can);

@@ -51,7 +51,7 @@ use crate::primvar::FVarSum;
 use crate::refine::dqq::DualBoundary;
 use crate::rules::CornerRules;
 
-impl FVarChannel {
+impl FVarChannel<'_> {
     /// Refines the channel with one Doo-Sabin level (the dual split of `mesh` with `rules` and
     /// `boundary`), whose child faces' corners are `child_corners` (the child's face indices,
     /// or its half-edges' from-vertices, in face order). See the module docs.
@@ -62,7 +62,7 @@ impl FVarChannel {
         boundary: DualBoundary,
         child_corners: &[u32],
     ) {
-        let parent = std::mem::take(&mut self.level);
+        let parent = std::mem::take(self.level_mut());
         let chaikin = boundary == DualBoundary::Chaikin;
         let (values, corner_values) = dual(mesh, rules, chaikin, &parent, child_corners);
         self.level =

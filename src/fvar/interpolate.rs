@@ -4,7 +4,7 @@
 //! follows its crease, blended while semi-sharp features decay.
 
 use super::tag;
-use super::topology::{span_inner_edges, FVarLevel, LevelSharpness, Split};
+use super::topology::{for_each_marked, span_inner_edges, FVarLevel, LevelSharpness, Split};
 use crate::mesh::HalfEdgeMesh;
 use crate::primvar::{FVarSum, RowSum};
 use crate::refine::PrimalSplit;
@@ -131,12 +131,29 @@ pub fn interpolate<F: ValueRules>(
     };
 
     let loops = mesh.has_repeated_corners();
-    for e in 0..mesh.num_edges() as u32 {
+    let ne = mesh.num_edges();
+    // With joint values, only the edges near seams and those whose point mismatches: listed
+    // from the sparse marks eight at a time rather than tested one by one.
+    let listed: Option<Vec<u32>> = near.as_ref().filter(|_| !loops).map(|n| {
+        let mut marks = n.edges.clone();
+        match child.tags.get(edge_base..edge_base + ne) {
+            Some(tags) => for_each_marked(tags, tag::MISMATCH, |e| marks[e] = 1),
+            None => marks.fill(1),
+        }
+        let mut list = Vec::new();
+        for_each_marked(&marks, 1, |e| list.push(e as u32));
+        list
+    });
+    let (listed, all) = match listed {
+        Some(list) => (list, 0..0),
+        None => (Vec::new(), 0..ne as u32),
+    };
+    for e in listed.into_iter().chain(all) {
         let cv = edge_base as u32 + e;
         let matches = child.tags[cv as usize] & tag::MISMATCH == 0;
         // Most edges: away from seams, their values refined with the surface's (read nothing
         // else).
-        if matches && !loops && near.as_ref().is_some_and(|n| !n.edges[e as usize]) {
+        if matches && !loops && near.as_ref().is_some_and(|n| n.edges[e as usize] == 0) {
             continue;
         }
         let [a, b] = mesh.edge_vertices[e as usize];
@@ -150,7 +167,7 @@ pub fn interpolate<F: ValueRules>(
             continue;
         }
         if matches {
-            if near.as_ref().is_some_and(|n| !n.edges[e as usize]) {
+            if near.as_ref().is_some_and(|n| n.edges[e as usize] == 0) {
                 continue;
             }
             let ends = [(a, parent.value_at(mesh, hs[0], a)), (b, parent.value_at(mesh, hs[0], b))];
@@ -167,10 +184,29 @@ pub fn interpolate<F: ValueRules>(
         }
     }
 
-    for v in 0..nv as u32 {
+    // With joint values, only the vertices near seams, those that mismatch and those without
+    // faces, listed as the edges are.
+    let listed: Option<Vec<u32>> = near.as_ref().map(|n| {
+        let mut marks = n.vertices.clone();
+        for (mark, range) in marks.iter_mut().zip(mesh.vertex_offsets.windows(2)) {
+            *mark |= u8::from(range[0] == range[1]);
+        }
+        match parent.tags.get(..nv) {
+            Some(tags) => for_each_marked(tags, tag::MISMATCH, |v| marks[v] = 1),
+            None => marks.fill(1),
+        }
+        let mut list = Vec::new();
+        for_each_marked(&marks, 1, |v| list.push(v as u32));
+        list
+    });
+    let (listed, all) = match listed {
+        Some(list) => (list, 0..0),
+        None => (Vec::new(), 0..nv as u32),
+    };
+    for v in listed.into_iter().chain(all) {
         if parent.tags[v as usize] & tag::MISMATCH == 0 {
             let isolated = mesh.out_half_edges(v).is_empty();
-            if !isolated && near.as_ref().is_some_and(|n| !n.vertices[v as usize]) {
+            if !isolated && near.as_ref().is_some_and(|n| n.vertices[v as usize] == 0) {
                 continue;
             }
             if linear || isolated {
@@ -246,18 +282,20 @@ impl Targets<'_> {
 /// rules of every other new value read vertex-numbered values only.
 struct NearSeams<'c> {
     cells: &'c [u32],
-    vertices: Vec<bool>,
-    edges: Vec<bool>,
+    /// 1 for a vertex of a cell near a seam (bytes, for [`for_each_marked`]).
+    vertices: Vec<u8>,
+    /// 1 for an edge near a seam (bytes, for [`for_each_marked`]).
+    edges: Vec<u8>,
 }
 
 impl<'c> NearSeams<'c> {
     fn new(mesh: &HalfEdgeMesh, cells: &'c [u32]) -> Self {
-        let mut vertices = vec![false; mesh.num_vertices()];
-        let mut edges = vec![false; mesh.num_edges()];
+        let mut vertices = vec![0u8; mesh.num_vertices()];
+        let mut edges = vec![0u8; mesh.num_edges()];
         for &c in cells {
             for h in mesh.cell_range(c as usize) {
-                vertices[mesh.he_from[h] as usize] = true;
-                edges[mesh.he_edge[h] as usize] = true;
+                vertices[mesh.he_from[h] as usize] = 1;
+                edges[mesh.he_edge[h] as usize] = 1;
             }
         }
         NearSeams { cells, vertices, edges }

@@ -125,12 +125,19 @@ use std::borrow::Cow;
 /// A face-varying channel between levels (several channels with the same indices travel as
 /// one, side by side).
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct FVarChannel {
-    pub level: FVarLevel,
-    /// False until a primal level analysed the topology: `level.values` then holds values as
-    /// given and `level.corner_values` the indices as given.
+pub struct FVarChannel<'a> {
+    level: FVarLevel,
+    /// False until a primal level analysed the topology: the level's values are then values as
+    /// given and its corner values indices as given.
     pub analysed: bool,
+    /// The values and indices as given, until a level reads them (`level` is then without
+    /// them): borrowed from the caller's channel where they can be, since the first level
+    /// reads them only (a copy was 24 MB of the textured 1M-quad torus's uv).
+    given: Option<Given<'a>>,
 }
+
+/// A channel's values and indices as given.
+type Given<'a> = (Cow<'a, [f32]>, Cow<'a, [u32]>);
 
 /// A channel's next level between [`FVarChannel::begin`] and [`FVarChannel::finish`]: its
 /// topology, and the parent's cells next to seams ([`FVarLevel::cells_near_seams`]), which both
@@ -148,11 +155,26 @@ impl FVarStep {
     }
 }
 
-impl FVarChannel {
+impl<'a> FVarChannel<'a> {
     /// A channel of `width` floats per value, one index per face corner.
-    pub fn new(width: usize, values: Vec<f32>, indices: Vec<u32>) -> Self {
-        let level = FVarLevel { width, values, corner_values: indices, ..FVarLevel::default() };
-        FVarChannel { level, analysed: false }
+    pub fn new(width: usize, values: Cow<'a, [f32]>, indices: Cow<'a, [u32]>) -> Self {
+        let level = FVarLevel { width, ..FVarLevel::default() };
+        FVarChannel { level, analysed: false, given: Some((values, indices)) }
+    }
+
+    /// The channel's level, holding the values and indices as given if no level read them.
+    pub fn level_mut(&mut self) -> &mut FVarLevel {
+        if let Some((values, indices)) = self.given.take() {
+            self.level.values = values.into_owned();
+            self.level.corner_values = indices.into_owned();
+        }
+        &mut self.level
+    }
+
+    /// [`FVarChannel::level_mut`], taken out of the channel.
+    pub fn into_level(mut self) -> FVarLevel {
+        self.level_mut();
+        self.level
     }
 
     /// Refines the channel with one level of `split` of `mesh` with `rules` (linear ones when
@@ -189,15 +211,13 @@ impl FVarChannel {
     ) -> FVarStep {
         let mode = ModeRules::new(mode);
         if !self.analysed {
-            let given = std::mem::take(&mut self.level);
-            self.level = FVarLevel::base(
-                mesh,
-                &given.values,
-                given.width,
-                &given.corner_values,
-                sharp,
-                mode,
-            );
+            let level = std::mem::take(&mut self.level);
+            let (values, indices) = match &self.given {
+                Some((values, indices)) => (&values[..], &indices[..]),
+                None => (&level.values[..], &level.corner_values[..]),
+            };
+            self.level = FVarLevel::base(mesh, values, level.width, indices, sharp, mode);
+            self.given = None;
             self.analysed = true;
         }
         let near_seams = self.level.cells_near_seams(mesh);
@@ -239,6 +259,6 @@ impl FVarChannel {
 
     /// Keeps the corners of the faces `keep` says, faces of `size` corners.
     pub fn keep_faces(&mut self, size: usize, keep: impl Fn(usize) -> bool) {
-        crate::mesh::retain_faces(&mut self.level.corner_values, size, keep);
+        crate::mesh::retain_faces(&mut self.level_mut().corner_values, size, keep);
     }
 }

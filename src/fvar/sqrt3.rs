@@ -50,7 +50,7 @@ use crate::primvar::FVarSum;
 use crate::refine::sqrt3::{first_child_vertices, split_half_edges};
 use crate::rules::{centroid, Sqrt3Rules, Weights};
 
-impl FVarChannel {
+impl FVarChannel<'_> {
     /// Refines the channel with one √3 level of `mesh` with `rules` (`refine_boundary` as the
     /// host's), whose child triangles' corners are `child_corners` (the child's face indices, or
     /// its half-edges' from-vertices, in face order), under `mode`. See the module docs.
@@ -62,7 +62,7 @@ impl FVarChannel {
         mode: FVarLinear,
         child_corners: &[u32],
     ) {
-        let parent = std::mem::take(&mut self.level);
+        let parent = std::mem::take(self.level_mut());
         let level = Sqrt3Level { mesh, rules, refine_boundary, mode, parent: &parent };
         let (values, corner_values) = level.refine(child_corners);
         self.level =
