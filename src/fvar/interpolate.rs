@@ -134,21 +134,8 @@ pub fn interpolate<F: ValueRules>(
     let ne = mesh.num_edges();
     // With joint values, only the edges near seams and those whose point mismatches: listed
     // from the sparse marks eight at a time rather than tested one by one.
-    let listed: Option<Vec<u32>> = near.as_ref().filter(|_| !loops).map(|n| {
-        let mut marks = n.edges.clone();
-        match child.tags.get(edge_base..edge_base + ne) {
-            Some(tags) => for_each_marked(tags, tag::MISMATCH, |e| marks[e] = 1),
-            None => marks.fill(1),
-        }
-        let mut list = Vec::new();
-        for_each_marked(&marks, 1, |e| list.push(e as u32));
-        list
-    });
-    let (listed, all) = match listed {
-        Some(list) => (list, 0..0),
-        None => (Vec::new(), 0..ne as u32),
-    };
-    for e in listed.into_iter().chain(all) {
+    let marks = near.as_ref().filter(|_| !loops).map(|n| n.edges.clone());
+    for e in visits(marks, child.tags.get(edge_base..edge_base + ne), ne) {
         let cv = edge_base as u32 + e;
         let matches = child.tags[cv as usize] & tag::MISMATCH == 0;
         // Most edges: away from seams, their values refined with the surface's (read nothing
@@ -186,24 +173,14 @@ pub fn interpolate<F: ValueRules>(
 
     // With joint values, only the vertices near seams, those that mismatch and those without
     // faces, listed as the edges are.
-    let listed: Option<Vec<u32>> = near.as_ref().map(|n| {
+    let marks = near.as_ref().map(|n| {
         let mut marks = n.vertices.clone();
         for (mark, range) in marks.iter_mut().zip(mesh.vertex_offsets.windows(2)) {
             *mark |= u8::from(range[0] == range[1]);
         }
-        match parent.tags.get(..nv) {
-            Some(tags) => for_each_marked(tags, tag::MISMATCH, |v| marks[v] = 1),
-            None => marks.fill(1),
-        }
-        let mut list = Vec::new();
-        for_each_marked(&marks, 1, |v| list.push(v as u32));
-        list
+        marks
     });
-    let (listed, all) = match listed {
-        Some(list) => (list, 0..0),
-        None => (Vec::new(), 0..nv as u32),
-    };
-    for v in listed.into_iter().chain(all) {
+    for v in visits(marks, parent.tags.get(..nv), nv) {
         if parent.tags[v as usize] & tag::MISMATCH == 0 {
             let isolated = mesh.out_half_edges(v).is_empty();
             if !isolated && near.as_ref().is_some_and(|n| n.vertices[v as usize] == 0) {
@@ -276,6 +253,23 @@ impl Targets<'_> {
         };
         &mut target[at * width..(at + 1) * width]
     }
+}
+
+/// The edges or vertices (`0..count`) whose values a level must visit: with joint values,
+/// those `marks` marks (near a seam, or without faces) and those whose `tags` mismatch (all of
+/// them when there are no tags), listed from the bytes eight at a time; else every one.
+fn visits(marks: Option<Vec<u8>>, tags: Option<&[u8]>, count: usize) -> impl Iterator<Item = u32> {
+    let listed = marks.map(|mut marks| {
+        match tags {
+            Some(tags) => for_each_marked(tags, tag::MISMATCH, |i| marks[i] = 1),
+            None => marks.fill(1),
+        }
+        let mut list = Vec::new();
+        for_each_marked(&marks, 1, |i| list.push(i as u32));
+        list
+    });
+    let all = if listed.is_some() { 0..0 } else { 0..count as u32 };
+    listed.unwrap_or_default().into_iter().chain(all)
 }
 
 /// The cells next to seams ([`FVarLevel::cells_near_seams`]) and their vertices and edges: the
