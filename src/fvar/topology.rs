@@ -168,11 +168,21 @@ pub struct SeamCorners {
 }
 
 impl SeamCorners {
+    /// The spans from the first that ends after child corner `at`.
+    fn spans_from(&self, at: usize) -> &[[u32; 3]] {
+        &self.spans[self.spans.partition_point(|s| (s[1] as usize) <= at)..]
+    }
+
+    /// Whether any of the `len` child corners from `at` on is near a seam: a piece that is
+    /// not can be copied out as the faces' own indices, without a patched copy.
+    pub fn touches(&self, at: usize, len: usize) -> bool {
+        self.spans_from(at).first().is_some_and(|s| (s[0] as usize) < at + len)
+    }
+
     /// Writes over `corners`, the child corners from `at` on, the values of the spans there.
     pub fn patch(&self, at: usize, corners: &mut [u32]) {
         let end = at + corners.len();
-        let first = self.spans.partition_point(|s| (s[1] as usize) <= at);
-        for &[s, e, from] in &self.spans[first..] {
+        for &[s, e, from] in self.spans_from(at) {
             let (s, e, from) = (s as usize, e as usize, from as usize);
             if s >= end {
                 break;

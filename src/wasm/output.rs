@@ -163,6 +163,10 @@ pub(super) fn refined_object(refined: &Refined, mut lent: Lent) -> JsResult<JsVa
         |c| {
             indices.push(c, u32_view);
             for (_, seams, out) in &mut in_pieces {
+                if !seams.touches(at, c.len()) {
+                    out.push(c, u32_view);
+                    continue;
+                }
                 patched.clear();
                 patched.extend_from_slice(c);
                 seams.patch(at, &mut patched);
