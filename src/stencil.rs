@@ -1147,45 +1147,59 @@ impl Lanes {
     }
 }
 
-/// Unit normals of tangent pairs ([`crate::limit::normal`]), made four at a time: in wasm the
-/// four cross products, lengths and divisions run side by side in lanes, with exactly that
-/// function's f32 operations (the same results), and where its test sends one of them to f64
-/// all four go through it. The last ones are written when the batch is dropped.
+/// Unit normals of tangent pairs ([`crate::limit::normal`]), gathered in batches of [`BATCH`]
+/// and made four at a time: in wasm the four cross products, lengths and divisions run side by
+/// side in lanes, with exactly that function's f32 operations (the same results), and where
+/// its test sends one of them to f64 all four go through it. The last ones are written when the
+/// batch is dropped.
 ///
-/// For the patches ([`crate::patches`]): 1.1 times faster per point there. A table's rows
-/// keep one normal at a time, which measured 1.05 times faster than this in their loop.
+/// For the patches ([`crate::patches`]): 1.1 times faster per point there than one normal at a
+/// time. A table's rows keep one normal at a time: this measured 1.05 times slower in their
+/// loop with batches of four, and no faster with batches of 64.
 pub(crate) struct Normals<'o> {
     out: &'o mut [[f32; 3]],
-    rows: [usize; 4],
-    tangents: [[Lanes; 2]; 4],
+    rows: [usize; BATCH],
+    tangents: [[Lanes; 2]; BATCH],
     len: usize,
 }
 
+/// Tangent pairs a [`Normals`] holds before it makes their normals: the patches' loop calls
+/// out to make them once per `BATCH` points rather than every fourth (V8 compiled the loop
+/// worse around the more frequent call: the torus's limit frame with normals took 1.07 times
+/// as long with batches of four).
+const BATCH: usize = 64;
+
 impl<'o> Normals<'o> {
     pub(crate) fn new(out: &'o mut [[f32; 3]]) -> Self {
-        Normals { out, rows: [0; 4], tangents: [[Lanes::ZERO; 2]; 4], len: 0 }
+        Normals { out, rows: [0; BATCH], tangents: [[Lanes::ZERO; 2]; BATCH], len: 0 }
     }
 
     /// The normal of `first × second` goes to `row`.
     #[inline(always)]
     pub(crate) fn push(&mut self, row: usize, first: Lanes, second: Lanes) {
-        self.rows[self.len] = row;
-        self.tangents[self.len] = [first, second];
-        self.len += 1;
-        if self.len == 4 {
+        let at = self.len % BATCH;
+        self.rows[at] = row;
+        self.tangents[at] = [first, second];
+        self.len = at + 1;
+        if self.len == BATCH {
             self.flush();
         }
     }
 
-    // Out of line: inlined, the four normals' code (run every fourth point) sat inside the
-    // patches' loop, and V8 compiled that loop worse; out of line the torus's limit frame with
-    // normals is 1.08 times faster in wasm (`bench/stencil_ab.mjs`, B/A 0.924).
+    // Out of line: inlined, the normals' code sat inside the patches' loop, and V8 compiled
+    // that loop worse (the torus's limit frame with normals: B/A 0.924 out of line, with
+    // batches of four, in `bench/stencil_ab.mjs`).
     #[inline(never)]
     fn flush(&mut self) {
-        let normals = four_normals(&self.tangents);
-        for (&row, normal) in self.rows.iter().zip(normals).take(self.len) {
-            if let Some(out) = self.out.get_mut(row) {
-                *out = normal;
+        let len = self.len.min(BATCH);
+        let (tangents, _) = self.tangents[..].as_chunks::<4>();
+        let (rows, _) = self.rows[..].as_chunks::<4>();
+        for (k, (tangents, rows)) in tangents.iter().zip(rows).enumerate().take(len.div_ceil(4)) {
+            let normals = four_normals(tangents);
+            for (&row, normal) in rows.iter().zip(normals).take(len - 4 * k) {
+                if let Some(out) = self.out.get_mut(row) {
+                    *out = normal;
+                }
             }
         }
         self.len = 0;
@@ -1259,6 +1273,47 @@ fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A batch of normals writes each pushed pair's [`crate::limit::normal`] to its row, bit for
+    /// bit, for counts below, at and past a batch and rows in any order; rows never pushed keep
+    /// what they held. Also a wasm test: there the normals are made in lanes.
+    #[cfg_attr(target_arch = "wasm32", wasm_bindgen_test::wasm_bindgen_test)]
+    #[cfg_attr(not(target_arch = "wasm32"), test)]
+    fn normals_in_batches_are_each_pairs_normal() {
+        for count in [1, 3, 4, 5, BATCH - 1, BATCH, BATCH + 1, 2 * BATCH + 7] {
+            let rows = count + 2;
+            let mut out = vec![[9.0f32; 3]; rows];
+            // Every third pair along one line (its normal is zero, through the f64 path), the
+            // others at varied angles and lengths.
+            let pair = |k: usize| {
+                let t = k as f32 * 0.37;
+                let a = [t.cos(), t.sin(), 0.25 * k as f32];
+                let b = if k % 3 == 0 { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
+                (a, b)
+            };
+            // Pushed in reverse row order, skipping rows 0 and 1.
+            let order: Vec<usize> = (2..rows).rev().collect();
+            {
+                let mut normals = Normals::new(&mut out);
+                for (k, &row) in order.iter().enumerate() {
+                    let (a, b) = pair(k);
+                    let lanes = |v: [f32; 3]| Lanes::load(&[v[0], v[1], v[2], 0.0]);
+                    normals.push(row, lanes(a), lanes(b));
+                }
+            }
+            assert_eq!(out[0], [9.0; 3], "count {count}");
+            assert_eq!(out[1], [9.0; 3], "count {count}");
+            for (k, &row) in order.iter().enumerate() {
+                let (a, b) = pair(k);
+                let expected = crate::limit::normal(a, b);
+                assert_eq!(
+                    out[row].map(f32::to_bits),
+                    expected.map(f32::to_bits),
+                    "count {count}, pair {k}"
+                );
+            }
+        }
+    }
 
     /// Rows placed out of order ([`Primvar::set`]) come out of the table in row order.
     #[test]
