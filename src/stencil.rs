@@ -1288,7 +1288,8 @@ mod tests {
             let pair = |k: usize| {
                 let t = k as f32 * 0.37;
                 let a = [t.cos(), t.sin(), 0.25 * k as f32];
-                let b = if k % 3 == 0 { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
+                let b =
+                    if k.is_multiple_of(3) { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
                 (a, b)
             };
             // Pushed in reverse row order, skipping rows 0 and 1.
