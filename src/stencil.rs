@@ -1163,10 +1163,11 @@ pub(crate) struct Normals<'o> {
     len: usize,
 }
 
-/// Tangent pairs a [`Normals`] holds before it makes their normals: the patches' loop calls
-/// out to make them once per `BATCH` points rather than every fourth (V8 compiled the loop
-/// worse around the more frequent call: the torus's limit frame with normals took 1.07 times
-/// as long with batches of four).
+/// Tangent pairs a [`Normals`] holds before it makes their normals, out of line: V8 compiles
+/// the patches' loop worse with the normals' code inlined into it, and worse around a call
+/// every fourth point than once per `BATCH` (the torus's limit frame with normals in
+/// `bench/stencil_ab.mjs`: B/A 0.924 for the call out of line, then 0.936 for batches of 64
+/// rather than four).
 const BATCH: usize = 64;
 
 impl<'o> Normals<'o> {
@@ -1177,6 +1178,8 @@ impl<'o> Normals<'o> {
     /// The normal of `first × second` goes to `row`.
     #[inline(always)]
     pub(crate) fn push(&mut self, row: usize, first: Lanes, second: Lanes) {
+        // `len` is below `BATCH` here (a full batch is flushed at once); the remainder says so
+        // to the compiler, which then checks no index.
         let at = self.len % BATCH;
         self.rows[at] = row;
         self.tangents[at] = [first, second];
@@ -1186,12 +1189,10 @@ impl<'o> Normals<'o> {
         }
     }
 
-    // Out of line: inlined, the normals' code sat inside the patches' loop, and V8 compiled
-    // that loop worse (the torus's limit frame with normals: B/A 0.924 out of line, with
-    // batches of four, in `bench/stencil_ab.mjs`).
+    // Out of line: see `BATCH`.
     #[inline(never)]
     fn flush(&mut self) {
-        let len = self.len.min(BATCH);
+        let len = self.len;
         let (tangents, _) = self.tangents[..].as_chunks::<4>();
         let (rows, _) = self.rows[..].as_chunks::<4>();
         for (k, (tangents, rows)) in tangents.iter().zip(rows).enumerate().take(len.div_ceil(4)) {
