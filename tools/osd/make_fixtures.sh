@@ -36,8 +36,9 @@
 #                           nonmanifold nonmanifold-untagged); the inputs are copied every time
 set -euo pipefail
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# A relative OSD_SHAPES is the caller's: made absolute before fixture_common.sh changes folder.
+[ -z "${OSD_SHAPES:-}" ] || OSD_SHAPES=$(realpath -m "$OSD_SHAPES")
+. "$(dirname "$0")/fixture_common.sh"
 shapes=${OSD_SHAPES:-"$root/../shared/meshes/osd"}
 sources="$shapes/../SOURCES.md"
 max_bytes=2000000
@@ -45,14 +46,6 @@ levels="1 2 3"
 
 [ -d "$shapes" ] || { echo "make_fixtures.sh: no shapes at $shapes (set OSD_SHAPES)" >&2; exit 1; }
 [ -f "$sources" ] || { echo "make_fixtures.sh: $sources not found" >&2; exit 1; }
-
-refine=$("$here/build.sh" "$root/target/osd/osd_refine")
-osd_version=$(dpkg-query -W -f='${Version}' libosd-dev 2>/dev/null || echo unknown)
-export LC_ALL=C
-
-cd "$root"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 
 # The 2-manifold shapes, from the SOURCES.md table (column 6 says manifold), without hedit ones.
 manifold_shapes() {
@@ -81,18 +74,6 @@ chmod 644 tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj
 rm -f tests/meshes/own_*.obj
 python3 "$here/make_meshes.py" tests tests/meshes >/dev/null
 python3 "$here/make_meshes.py" repeated tests/meshes/osd_nonmanifold >/dev/null
-
-# The boundary mode that OpenSubdiv uses for a shape's own tags.
-tagged_boundary() {
-    local value
-    value=$(awk '$1 == "t" && $2 == "interpolateboundary" { v = $4 } END { print v }' "$1")
-    case $value in
-        0) echo none ;;
-        1) echo edge-and-corner ;;
-        2 | "") echo edge-only ;;
-        *) echo "make_fixtures.sh: $1: interpolateboundary $value" >&2; exit 1 ;;
-    esac
-}
 
 # The levels written for a shape. own_repeat_sphere lists vertex 0 twice in one face, far apart,
 # and OpenSubdiv 3.5 refines it wrongly from level 2 on: Vtr::Level::populateLocalIndices gives

@@ -20,53 +20,20 @@
 #
 # Usage: tools/osd/make_fvar_fixtures.sh       (needs g++, libosd-dev)
 set -euo pipefail
+. "$(dirname "$0")/fixture_common.sh"
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
 # Per-file caps: a level is left out for a shape once its file would be larger.
 max_bytes_l2=500000
 max_bytes_l3=200000
 modes="none corners-only corners-plus1 corners-plus2 boundaries all"
 
-refine=$("$here/build.sh" "$root/target/osd/osd_refine")
-osd_version=$(dpkg-query -W -f='${Version}' libosd-dev 2>/dev/null || echo unknown)
-export LC_ALL=C
-cd "$root"
-
 dir=tests/fixtures/osd_fvar
-rm -rf "$dir"
-mkdir -p "$dir"
 manifest=$dir/MANIFEST.tsv
-{
-    echo "# Face-varying reference fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_fvar_fixtures.sh:"
-    echo "# osd_refine --scheme SCHEME --levels LEVEL --fvar-linear MODE --no-positions [--ignore-tags --boundary edge-and-corner] INPUT"
-    printf '# fixture\tscheme\tboundary\tlevel\tinput\tmode\ttagged\n'
-} >"$manifest"
+start_manifest "$dir" \
+    "# Face-varying reference fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_fvar_fixtures.sh:" \
+    "# osd_refine --scheme SCHEME --levels LEVEL --fvar-linear MODE --no-positions [--ignore-tags --boundary edge-and-corner] INPUT" \
+    "$(printf '# fixture\tscheme\tboundary\tlevel\tinput\tmode\ttagged')"
 
-# True when every face corner of the OBJ file $1 has a vt index (and there are vt lines).
-all_corners_have_uvs() {
-    awk '$1 == "vt" { vt = 1 } $1 == "f" { for (i = 2; i <= NF; i++) if ($i !~ /^-?[0-9]+\/-?[0-9]+/) bad = 1 }
-         END { exit !(vt && !bad) }' "$1"
-}
-
-# True when the file has tags that change the result.
-has_tags() {
-    awk '$1 == "t" && $2 ~ /^(crease|corner|hole|interpolateboundary|creasemethod|smoothtriangles)$/ { t = 1 }
-         END { exit !t }' "$1"
-}
-
-tagged_boundary() {
-    local value
-    value=$(awk '$1 == "t" && $2 == "interpolateboundary" { v = $4 } END { print v }' "$1")
-    case $value in
-        0) echo none ;;
-        1) echo edge-and-corner ;;
-        *) echo edge-only ;;
-    esac
-}
-
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 for input in $(ls tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj | sort); do
     all_corners_have_uvs "$input" || continue
     name=$(basename "$input" .obj)
@@ -77,7 +44,7 @@ for input in $(ls tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj | so
         *) continue ;;
     esac
     kinds=untagged
-    has_tags "$input" && kinds="untagged tagged"
+    has_tags "$input" interpolateboundary && kinds="untagged tagged"
     for kind in $kinds; do
         if [ $kind = untagged ]; then
             flags="--ignore-tags --boundary edge-and-corner"; boundary=edge-and-corner; tagged=no

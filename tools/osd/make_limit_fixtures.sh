@@ -19,42 +19,16 @@
 #
 # MANIFEST.tsv columns: fixture, scheme, boundary, level, input, tagged (yes/no).
 set -euo pipefail
+. "$(dirname "$0")/fixture_common.sh"
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
 max_bytes=700000      # levels 1-2
 max_bytes_3=120000     # level 3
-refine=$("$here/build.sh" "$root/target/osd/osd_refine")
-osd_version=$(dpkg-query -W -f='${Version}' libosd-dev 2>/dev/null || echo unknown)
-export LC_ALL=C
-
-cd "$root"
 dir=tests/fixtures/osd_limit
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-rm -rf "$dir"
-mkdir -p "$dir"
 manifest="$dir/MANIFEST.tsv"
-{
-    echo "# OpenSubdiv limit fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_limit_fixtures.sh:"
-    echo "# osd_refine --limit --scheme SCHEME --levels LEVEL [--boundary BOUNDARY --ignore-tags] INPUT -o FIXTURE"
-    printf '# fixture\tscheme\tboundary\tlevel\tinput\ttagged\n'
-} >"$manifest"
-
-tagged_boundary() {
-    local value
-    value=$(awk '$1 == "t" && $2 == "interpolateboundary" { v = $4 } END { print v }' "$1")
-    case $value in
-        0) echo none ;;
-        1) echo edge-and-corner ;;
-        2 | "") echo edge-only ;;
-        *) echo "make_limit_fixtures.sh: $1: interpolateboundary $value" >&2; exit 1 ;;
-    esac
-}
-
-has_tags() {
-    grep -Eq '^t (crease|corner|hole|creasemethod|smoothtriangles) ' "$1"
-}
+start_manifest "$dir" \
+    "# OpenSubdiv limit fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_limit_fixtures.sh:" \
+    "# osd_refine --limit --scheme SCHEME --levels LEVEL [--boundary BOUNDARY --ignore-tags] INPUT -o FIXTURE" \
+    "$(printf '# fixture\tscheme\tboundary\tlevel\tinput\ttagged')"
 
 for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj \
                   tests/meshes/osd_nonmanifold/catmark_*.obj tests/meshes/osd_nonmanifold/loop_*.obj | sort); do
@@ -87,10 +61,7 @@ for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj \
                 break
             fi
             out="$stem.L$level.obj"
-            same=""
-            for other in "$dir/$name".*.L"$level".obj; do
-                [ -f "$other" ] && cmp -s "$tmp/out.obj" "$other" && { same=$(basename "$other"); break; }
-            done
+            same=$(same_fixture "$dir" "$name" "$level" "$tmp/out.obj")
             if [ -n "$same" ]; then
                 out=$same
             else

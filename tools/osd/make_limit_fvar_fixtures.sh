@@ -32,53 +32,20 @@
 # input, mode, tagged (yes/no). Needs g++ and libosd-dev only. Deterministic: a second run writes
 # byte-identical files.
 set -euo pipefail
+. "$(dirname "$0")/fixture_common.sh"
 
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
 # Per-file caps, which keep the directory near 14 MB (levels 1-2; level 3).
 max_bytes_l12=90000
 max_bytes_l3=25000
 modes="none corners-only corners-plus1 corners-plus2 boundaries all"
 
-refine=$("$here/build.sh" "$root/target/osd/osd_refine")
-osd_version=$(dpkg-query -W -f='${Version}' libosd-dev 2>/dev/null || echo unknown)
-export LC_ALL=C
-cd "$root"
-
 dir=tests/fixtures/osd_limit_fvar
-rm -rf "$dir"
-mkdir -p "$dir"
 manifest=$dir/MANIFEST.tsv
-{
-    echo "# Face-varying limit fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_limit_fvar_fixtures.sh:"
-    echo "# osd_refine --limit --no-normals --fvar-linear MODE --scheme SCHEME --levels LEVEL [--ignore-tags --boundary edge-and-corner] INPUT -o FIXTURE"
-    printf '# fixture\tscheme\tboundary\tlevel\tinput\tmode\ttagged\n'
-} >"$manifest"
+start_manifest "$dir" \
+    "# Face-varying limit fixtures from OpenSubdiv $osd_version (libosd-dev), made by tools/osd/make_limit_fvar_fixtures.sh:" \
+    "# osd_refine --limit --no-normals --fvar-linear MODE --scheme SCHEME --levels LEVEL [--ignore-tags --boundary edge-and-corner] INPUT -o FIXTURE" \
+    "$(printf '# fixture\tscheme\tboundary\tlevel\tinput\tmode\ttagged')"
 
-# True when every face corner of the OBJ file $1 has a vt index (and there are vt lines).
-all_corners_have_uvs() {
-    awk '$1 == "vt" { vt = 1 } $1 == "f" { for (i = 2; i <= NF; i++) if ($i !~ /^-?[0-9]+\/-?[0-9]+/) bad = 1 }
-         END { exit !(vt && !bad) }' "$1"
-}
-
-# True when the file has tags that change the result.
-has_tags() {
-    awk '$1 == "t" && $2 ~ /^(crease|corner|hole|interpolateboundary|creasemethod|smoothtriangles)$/ { t = 1 }
-         END { exit !t }' "$1"
-}
-
-tagged_boundary() {
-    local value
-    value=$(awk '$1 == "t" && $2 == "interpolateboundary" { v = $4 } END { print v }' "$1")
-    case $value in
-        0) echo none ;;
-        1) echo edge-and-corner ;;
-        *) echo edge-only ;;
-    esac
-}
-
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 skipped=0
 for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj | sort); do
     all_corners_have_uvs "$input" || continue
@@ -88,7 +55,7 @@ for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj | s
         *) scheme=catmark ;;
     esac
     kinds=untagged
-    has_tags "$input" && kinds="untagged tagged"
+    has_tags "$input" interpolateboundary && kinds="untagged tagged"
     for kind in $kinds; do
         if [ $kind = untagged ]; then
             flags="--ignore-tags --boundary edge-and-corner"; boundary=edge-and-corner; tagged=no
@@ -114,13 +81,7 @@ for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj | s
                 fi
             done
             for mode in $modes; do
-                fixture=""
-                for other in "$dir/$name".*.L"$level".obj; do
-                    if [ -f "$other" ] && cmp -s "$tmp/$mode.obj" "$other"; then
-                        fixture=$(basename "$other")
-                        break
-                    fi
-                done
+                fixture=$(same_fixture "$dir" "$name" "$level" "$tmp/$mode.obj")
                 if [ -z "$fixture" ]; then
                     fixture=$name.$kind.$mode.L$level.obj
                     cp "$tmp/$mode.obj" "$dir/$fixture"
