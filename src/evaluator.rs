@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::RegularPatches;
-use crate::scheme::build_stencils;
+use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
 use crate::stencil::{pad, AllRows, StencilTable};
 use crate::tags::Tags;
@@ -64,7 +64,31 @@ impl Evaluator {
         options: &Options,
         tags: &Tags,
     ) -> Result<Self> {
-        let build = build_stencils(base, attributes, options, tags)?;
+        // Untagged Catmull-Clark at the limit only: tags can make any face irregular, and
+        // other schemes' regular pieces are not these patches. With normals, the patches' and
+        // the rows' tangents are both summed on differences (see `crate::patches`), so that
+        // they agree with the GPU evaluator's, which runs the rows. The patches' points get
+        // their rows from the patches too, not through the levels.
+        let patchable = options.limit
+            && tags.is_trivial()
+            && options.schemes.iter().all(|&s| s == Scheme::CatmullClark);
+        let levels = u32::try_from(options.levels()).unwrap_or(u32::MAX);
+        let mut patches = None;
+        let mut find_patches = |faces: &PolyMesh| {
+            let outputs = faces.positions.len() / 3;
+            patches = RegularPatches::new(base, faces, levels, outputs);
+            patches.as_ref().map_or_else(Vec::new, |p| p.given(outputs))
+        };
+        let made_elsewhere: Option<MadeElsewhere<'_>> = patchable.then_some(&mut find_patches);
+        let mut build = build_stencils(base, attributes, options, tags, made_elsewhere)?;
+        if let Some(patches) = &patches {
+            let tangents = build.table.tangent_weights().is_some();
+            let bytes = build.table.bytes() + patches.row_bytes(tangents);
+            if bytes > options.max_bytes {
+                return Err(Error::TooLarge(table_too_large(levels, bytes, options.max_bytes)));
+            }
+            build.table = patches.rows_into(build.table);
+        }
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,
             (true, true) => NormalSource::Tangents,
@@ -81,19 +105,6 @@ impl Evaluator {
             build.table.evaluate(&a.values, a.item_size, &mut values)?;
             channels.push(Attribute::vertex(a.name.clone(), a.item_size, values));
         }
-        // Untagged Catmull-Clark at the limit only: tags can make any face irregular, and
-        // other schemes' regular pieces are not these patches. With normals, the patches' and
-        // the rows' tangents are both summed on differences (see `crate::patches`), so that
-        // they agree with the GPU evaluator's, which runs the rows.
-        let patchable = options.limit
-            && tags.is_trivial()
-            && options.schemes.iter().all(|&s| s == Scheme::CatmullClark);
-        let patches = patchable
-            .then(|| {
-                let levels = u32::try_from(options.levels()).unwrap_or(u32::MAX);
-                RegularPatches::new(base, &build.mesh, levels, build.table.num_stencils())
-            })
-            .flatten();
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
                 let rows: Vec<usize> = match &patches {

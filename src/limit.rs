@@ -55,14 +55,18 @@ pub fn normal(first: [f32; 3], second: [f32; 3]) -> [f32; 3] {
 /// (else it is left empty: a stencil table gives the frame of any positions later), and the
 /// limit of `rows` (the level's vertex-varying rows, or any [`Primvar`], possibly empty) under
 /// the position masks; with `tangent_rows`, `rows` under the two tangent masks too (for stencil
-/// tables of normals), all three from [`Primvar::limit_rows`].
+/// tables of normals), all three from [`Primvar::limit_rows`]. The rows of a vertex that
+/// `elsewhere` marks (empty: none) are left empty: a stencil build makes the limit rows of
+/// regular Catmull-Clark faces from their patches instead (see `crate::patches`).
 pub fn evaluate<V: Primvar>(
     mesh: &HalfEdgeMesh,
     rules: &LimitRules,
     rows: &V,
     tangent_rows: bool,
     with_frame: bool,
+    elsewhere: &[bool],
 ) -> (LimitFrame, V, Option<[V; 2]>) {
+    let elsewhere = |v: u32| elsewhere.get(v as usize).copied().unwrap_or(false);
     let n = mesh.num_vertices();
     let points = &mesh.positions;
     let reserved = if with_frame { 3 * n } else { 0 };
@@ -80,8 +84,13 @@ pub fn evaluate<V: Primvar>(
     // Nothing to walk for without the frame or rows of positions (tangent rows come below).
     let walked = if with_frame || position_rows { n as u32 } else { 0 };
     for v in 0..walked {
-        rules.gather(mesh, v, &mut hood);
-        if position_rows {
+        let skip = elsewhere(v);
+        if !skip || with_frame {
+            rules.gather(mesh, v, &mut hood);
+        }
+        if position_rows && skip {
+            out_rows.push(&mut row_sum, |_| {});
+        } else if position_rows {
             out_rows.push(&mut row_sum, |w| rules.position(&hood, w));
         }
         if !with_frame {
@@ -101,6 +110,9 @@ pub fn evaluate<V: Primvar>(
     let mut tangents = None;
     if with_rows && tangent_rows {
         let (positions, both) = rows.limit_rows(mesh, &mut |v, [position, first, second]| {
+            if elsewhere(v) {
+                return;
+            }
             rules.gather(mesh, v, &mut hood);
             rules.position(&hood, position);
             rules.tangents(&hood, first, second);

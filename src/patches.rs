@@ -21,7 +21,7 @@
 //! GPU evaluator (which runs the rows) must give the CPU evaluator's normals to 1e-5.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::{Lanes, Normals};
+use crate::stencil::{Lanes, Normals, StencilTable};
 
 /// The regular faces of a base mesh refined `levels` times, and for each the output vertices
 /// its patch gives (each output vertex belongs to at most one patch).
@@ -154,6 +154,66 @@ impl RegularPatches {
     /// The output vertices no patch gives.
     pub(crate) fn rest(&self) -> &[u32] {
         &self.rest
+    }
+
+    /// Per output vertex (of `outputs`), whether a patch gives it.
+    pub(crate) fn given(&self, outputs: usize) -> Vec<bool> {
+        let mut given = vec![false; outputs];
+        for &v in &self.points {
+            if let Some(g) = given.get_mut(v as usize) {
+                *g = true;
+            }
+        }
+        given
+    }
+
+    /// Bytes that the rows of the patches' points take in a table (see [`Self::rows_into`]):
+    /// 4 per entry and 4 per weight (three weights with `tangents`, else one).
+    pub(crate) fn row_bytes(&self, tangents: bool) -> u64 {
+        let per_entry = if tangents { 16 } else { 8 };
+        let nonzero = |k: u8| self.basis[k as usize][0].iter().filter(|&&b| b != 0.0).count();
+        let entries: usize = self.params.iter().map(|&[i, j]| nonzero(i) * nonzero(j)).sum();
+        per_entry * entries as u64
+    }
+
+    /// `table` with the rows of the patches' points made from the patches: the B-spline
+    /// weights of each point's sample on its patch's 16 control points (the tensor products of
+    /// the basis, and of the basis with its derivative for the tangents `∂u` and `∂v`), those
+    /// that are not 0. These are the limit stencils in closed form, as OpenSubdiv's
+    /// `Far::LimitStencilTableFactory` takes them from its regular patches; composed through
+    /// the levels they took most of the build (a limit row gathers about 95 parent entries).
+    pub(crate) fn rows_into(&self, table: StencilTable) -> StencilTable {
+        let mut owner = vec![(0u32, [0u8; 2]); table.num_stencils()];
+        for p in 0..self.controls.len() {
+            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
+            for (&v, &ij) in self.points[range.clone()].iter().zip(&self.params[range]) {
+                if let Some(o) = owner.get_mut(v as usize) {
+                    *o = (p as u32, ij);
+                }
+            }
+        }
+        // Each patch's control points in ascending order, as every row of a table lists them.
+        let ascending: Vec<[u8; 16]> = (self.controls.iter())
+            .map(|controls| {
+                let mut order: [u8; 16] = std::array::from_fn(|k| k as u8);
+                order.sort_unstable_by_key(|&k| controls[k as usize]);
+                order
+            })
+            .collect();
+        let mut rows = self.points.clone();
+        rows.sort_unstable();
+        table.with_rows(&rows, |v, entries| {
+            let (p, [i, j]) = owner[v as usize];
+            let ([bi, di], [bj, dj]) = (self.basis[i as usize], self.basis[j as usize]);
+            let controls = &self.controls[p as usize];
+            for k in ascending[p as usize].map(usize::from) {
+                let (r, c) = (k / 4, k % 4);
+                let w = bj[r] * bi[c];
+                if w != 0.0 {
+                    entries.push((controls[k], [w, bj[r] * di[c], dj[r] * bi[c]]));
+                }
+            }
+        })
     }
 
     /// Patch `p`'s 16 control points, from the padded control points.

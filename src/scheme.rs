@@ -28,6 +28,7 @@ pub use crate::stencil::StencilTable;
 use crate::stencil::Stencils;
 use crate::tags::Tags;
 use std::borrow::Cow;
+use std::fmt::Display;
 use std::ops::ControlFlow;
 
 /// Where a call is, told to a progress callback after each level (the last one included, after
@@ -243,7 +244,7 @@ pub fn stencil_table_mesh(
     options: &Options,
     tags: &Tags,
 ) -> Result<(StencilTable, PolyMesh)> {
-    let StencilBuild { table, mut mesh, .. } = build_stencils(base, &[], options, tags)?;
+    let StencilBuild { table, mut mesh, .. } = build_stencils(base, &[], options, tags, None)?;
     mesh.positions = vec![0.0; 3 * table.num_stencils()];
     table.evaluate(base.positions.as_flattened(), 3, &mut mesh.positions)?;
     Ok((table, mesh))
@@ -259,13 +260,23 @@ pub(crate) struct StencilBuild {
     pub face_varying: Vec<Attribute>,
 }
 
+/// The message of a stencil table of `levels` levels and `bytes` bytes past `max_bytes`.
+pub(crate) fn table_too_large(levels: impl Display, bytes: impl Display, max_bytes: u64) -> String {
+    format!(
+        "{levels} level(s) would make a stencil table of {bytes} bytes, more than the limit of {max_bytes} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)"
+    )
+}
+
 /// Runs the levels of `options` once with stencils as the vertex-varying data (see
-/// [`crate::stencil`]) and the face-varying channels of `attributes` alongside.
+/// [`crate::stencil`]) and the face-varying channels of `attributes` alongside. With the limit,
+/// the rows of the vertices that `made_elsewhere` marks (see [`StencilRequest`]) are left empty,
+/// for the caller to fill.
 pub(crate) fn build_stencils(
     base: &HalfEdgeMesh,
     attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
+    made_elsewhere: Option<MadeElsewhere<'_>>,
 ) -> Result<StencilBuild> {
     check_attributes(attributes, base)?;
     check_guards(base, options)?;
@@ -276,11 +287,7 @@ pub(crate) fn build_stencils(
     let vertices = predict(base, options).vertices;
     let offset_bytes = vertices.saturating_add(1).saturating_mul(4);
     let max_bytes = options.max_bytes;
-    let too_large = |bytes: String| {
-        format!(
-            "{levels} level(s) would make a stencil table of {bytes} bytes, more than the limit of {max_bytes} bytes; use fewer levels or raise maxBytes (CLI --max-bytes)"
-        )
-    };
+    let too_large = |bytes: String| table_too_large(levels, bytes, max_bytes);
     let least = offset_bytes.saturating_add(vertices.saturating_mul(8));
     if least > max_bytes {
         return Err(Error::TooLarge(too_large(format!("at least {least}"))));
@@ -289,7 +296,7 @@ pub(crate) fn build_stencils(
     let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
     let count = attributes.len();
     let mut stencils = None;
-    let mut tangents = None;
+    let mut request = StencilRequest { made_elsewhere, tangents: None };
     let refined = refine_levels(
         Cow::Borrowed(base),
         options,
@@ -300,14 +307,14 @@ pub(crate) fn build_stencils(
             stencils = Some(last);
             attributes::unpack_all(Rows::default(), &Default::default(), fvar, &fvar_layout, count)
         },
-        Some(&mut tangents),
+        Some(&mut request),
         None,
     )?;
     let (mut mesh, face_varying) = refined.into_parts();
     let stencils = stencils.unwrap_or_default();
     let what = || too_large(format!("more than {max_bytes}"));
     let mut table = stencils.into_table(what)?;
-    if let Some(TangentRows { limit, tangents: [first, second] }) = tangents {
+    if let Some(TangentRows { limit, tangents: [first, second] }) = request.tangents {
         let mismatch = || {
             Error::Unsupported(
                 "the tangent stencils do not match the positions'; please report this mesh".into(),
@@ -492,7 +499,7 @@ fn drop_holes(mut poly: PolyMesh, tags: &LevelTags, fvar: &mut [FVarChannel<'_>]
 /// With `limit`, the last level is evaluated at the limit (`rows` too, by the position masks).
 /// `progress` is told after each level.
 ///
-/// `tangent_rows` is for a stencil build, where `rows` stand for the positions: the limit's
+/// `stencil` is for a stencil build, where `rows` stand for the positions: the limit's
 /// positions and normals are then left to the table (the result keeps the last level's
 /// positions and has no normals), and with `normals` the tangents' rows are written there.
 #[allow(clippy::too_many_arguments)]
@@ -503,16 +510,16 @@ fn refine_levels<'a, 'f, V: Primvar>(
     rows: V,
     fvar: Vec<FVarChannel<'f>>,
     finish: impl FnOnce(V, Vec<FVarChannel<'f>>) -> Channels,
-    tangent_rows: Option<&mut Option<TangentRows<V>>>,
+    stencil: Option<&mut StencilRequest<'_, V>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     if options.limit {
         check_limit(options)?;
     }
     let levels = options.levels();
-    let stencil_build = tangent_rows.is_some();
+    let stencil_build = stencil.is_some();
     let refined =
-        run_levels(base, options, tags, rows, fvar, finish, tangent_rows, progress.as_deref_mut())?;
+        run_levels(base, options, tags, rows, fvar, finish, stencil, progress.as_deref_mut())?;
     let face_normals = options.normals && !stencil_build;
     let refined = if face_normals { refined.with_face_normals() } else { refined };
     if levels > 0 {
@@ -551,6 +558,18 @@ fn limit_scheme(scheme: Scheme, mesh: &HalfEdgeMesh) -> Option<Scheme> {
     }
 }
 
+/// Given the last level's faces, true for each of its vertices whose limit rows the caller of a
+/// stencil build makes itself (see [`StencilRequest`]).
+pub(crate) type MadeElsewhere<'s> = &'s mut dyn FnMut(&PolyMesh) -> Vec<bool>;
+
+/// What a stencil build asks of the levels besides its rows: which of the last level's vertices
+/// get their limit rows elsewhere (`made_elsewhere`, given the last level's faces: true for each
+/// such vertex, whose rows are then left empty), and, filled in, the tangents' rows.
+pub(crate) struct StencilRequest<'s, V> {
+    pub made_elsewhere: Option<MadeElsewhere<'s>>,
+    pub tangents: Option<TangentRows<V>>,
+}
+
 /// The rows of the limit tangents at the last level's vertices, and the rows of their limit
 /// positions when those are not the call's rows (normals without `limit`); rows made together
 /// may share their entries ([`Primvar::limit_rows`]).
@@ -569,13 +588,13 @@ fn run_levels<'a, 'f, V: Primvar>(
     mut rows: V,
     mut fvar: Vec<FVarChannel<'f>>,
     finish: impl FnOnce(V, Vec<FVarChannel<'f>>) -> Channels,
-    tangent_rows: Option<&mut Option<TangentRows<V>>>,
+    stencil: Option<&mut StencilRequest<'_, V>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     // The limit masks run on the last level's mesh, for the limit or for its normals.
     let masks_wanted = options.limit || options.normals;
     // A stencil build leaves the positions to its table (see `build_stencils`).
-    let stencil_build = tangent_rows.is_some();
+    let stencil_build = stencil.is_some();
     check_guards(&base, options)?;
     tags.validate(base.num_vertices(), base.num_cells())?;
     let crease_edges = crate::rules::crease::crease_edges(&base, tags)?;
@@ -788,9 +807,20 @@ fn run_levels<'a, 'f, V: Primvar>(
         let rules = LimitRules { scheme: last_scheme, boundary, tags: level_tags.as_ref(), starts };
         // A stencil build's masks run once, for the rows.
         let want_tangent_rows = stencil_build && options.normals;
-        let (frame, limit_rows, tangents) =
-            crate::limit::evaluate(&mesh, &rules, &rows, want_tangent_rows, !stencil_build);
         let mut poly = mesh.to_poly();
+        let mut stencil = stencil;
+        let elsewhere = match stencil.as_deref_mut().and_then(|s| s.made_elsewhere.as_mut()) {
+            Some(made_elsewhere) => made_elsewhere(&poly),
+            None => Vec::new(),
+        };
+        let (frame, limit_rows, tangents) = crate::limit::evaluate(
+            &mesh,
+            &rules,
+            &rows,
+            want_tangent_rows,
+            !stencil_build,
+            &elsewhere,
+        );
         // The limit rows replace the level's under `limit`; otherwise the tangent rows may
         // share their entries.
         let limit_rows = if options.limit {
@@ -808,8 +838,8 @@ fn run_levels<'a, 'f, V: Primvar>(
                 crate::limit::limit_face_varying(&mesh, &rules, channel.level_mut(), linear);
             }
         }
-        if let Some(out) = tangent_rows {
-            *out = tangents.map(|tangents| TangentRows { limit: limit_rows, tangents });
+        if let Some(out) = stencil {
+            out.tangents = tangents.map(|tangents| TangentRows { limit: limit_rows, tangents });
         }
         if let Some(tags) = level_tags.as_ref().filter(|t| t.has_holes()) {
             poly = drop_holes(poly, tags, &mut fvar);

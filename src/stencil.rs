@@ -580,6 +580,55 @@ impl StencilTable {
             .then(|| StencilTable { tangent_weights: Some(Box::new([first, second])), ..self })
     }
 
+    /// This table with the rows `rows` lists (ascending) made by `fill(row, entries)`, which
+    /// appends a row's entries: a control vertex and its weights (the position's, then the two
+    /// tangents', which a table without tangents drops). The other rows stay as they are. For
+    /// rows that a stencil build left empty (`scheme::build_stencils`' `made_elsewhere`).
+    pub(crate) fn with_rows(
+        self,
+        rows: &[u32],
+        mut fill: impl FnMut(u32, &mut Vec<(u32, [f32; 3])>),
+    ) -> StencilTable {
+        let StencilTable { num_control, offsets, indices, weights, tangent_weights } = self;
+        let mut entries = Vec::with_capacity(16);
+        let mut table = StencilTable {
+            num_control,
+            offsets: Vec::with_capacity(offsets.len()),
+            indices: Vec::with_capacity(indices.len() + 16 * rows.len()),
+            weights: Vec::with_capacity(weights.len() + 16 * rows.len()),
+            tangent_weights: tangent_weights.as_ref().map(|_| {
+                let room = || Vec::with_capacity(weights.len() + 16 * rows.len());
+                Box::new([room(), room()])
+            }),
+        };
+        table.offsets.push(0);
+        let mut filled = rows.iter().copied().peekable();
+        for (r, range) in offsets.windows(2).enumerate() {
+            if filled.next_if_eq(&(r as u32)).is_some() {
+                entries.clear();
+                fill(r as u32, &mut entries);
+                table.indices.extend(entries.iter().map(|&(c, _)| c));
+                table.weights.extend(entries.iter().map(|&(_, [w, ..])| w));
+                if let Some([first, second]) = table.tangent_weights.as_deref_mut() {
+                    first.extend(entries.iter().map(|&(_, [_, w, _])| w));
+                    second.extend(entries.iter().map(|&(_, [.., w])| w));
+                }
+            } else {
+                let range = range[0] as usize..range[1] as usize;
+                table.indices.extend_from_slice(&indices[range.clone()]);
+                table.weights.extend_from_slice(&weights[range.clone()]);
+                if let (Some([first, second]), Some([a, b])) =
+                    (table.tangent_weights.as_deref_mut(), tangent_weights.as_deref())
+                {
+                    first.extend_from_slice(&a[range.clone()]);
+                    second.extend_from_slice(&b[range]);
+                }
+            }
+            table.offsets.push(table.indices.len() as u32);
+        }
+        table
+    }
+
     /// A table of this one's entries with other weights (one per entry), without tangents.
     pub(crate) fn with_weights(&self, weights: Vec<f32>) -> Option<Self> {
         (weights.len() == self.weights.len()).then(|| StencilTable {

@@ -269,8 +269,9 @@ fn assert_same_directions(got: &[f32], want: &[f32], tolerance: f64, what: &str)
 }
 
 /// At the limit, Catmull-Clark's regular faces are evaluated as bicubic patches
-/// (`Evaluator::patch_vertices`); the others keep their rows. Both must give the table's own
-/// positions and normals: on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the
+/// (`Evaluator::patch_vertices`); the others keep their rows. Both must give the positions and
+/// normals of the rows composed through the levels, and of the evaluator's own table (whose
+/// rows for the patches' points are the patches' B-spline weights): on every Catmull-Clark shape of OpenSubdiv's (untagged: tags turn the
 /// patches off), at levels 1 to 3, with and without normals, and on a torus, whose faces are
 /// all regular. The normals must agree to 1e-5 rad, what the GPU evaluator (which runs the
 /// rows) must meet against the CPU's. With both tangent sums taken on differences of points
@@ -305,12 +306,19 @@ fn regular_patches_give_the_tables_points_and_normals() {
                 let (mut want, mut want_normal) = (vec![0.0; n], vec![0.0; n]);
                 let out = normals.then_some(&mut normal[..]);
                 evaluator.evaluate(&mesh.positions, &mut points, out).unwrap();
-                let table = evaluator.table();
-                table.evaluate_with_normals(&mesh.positions, &mut want, &mut want_normal).unwrap();
+                // The rows composed through the levels (`stencil_table_mesh` makes no patches);
+                // the evaluator's own table takes the patches' points' rows from the patches.
+                let (composed, _) = stencil_table_mesh(&base, &options, &Tags::default()).unwrap();
                 let what = format!("{name} level {levels} normals {normals}");
-                assert_close(&points, &want, scale, &what);
-                if normals {
-                    assert_same_directions(&normal, &want_normal, 1e-5, &what);
+                for (table, which) in [(&composed, "composed rows"), (evaluator.table(), "table")] {
+                    table
+                        .evaluate_with_normals(&mesh.positions, &mut want, &mut want_normal)
+                        .unwrap();
+                    let what = format!("{what}, patches against the {which}");
+                    assert_close(&points, &want, scale, &what);
+                    if normals {
+                        assert_same_directions(&normal, &want_normal, 1e-5, &what);
+                    }
                 }
                 patched += evaluator.patch_vertices();
                 with_patches += usize::from(evaluator.patch_vertices() > 0);
