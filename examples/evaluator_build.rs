@@ -1,18 +1,27 @@
-//! Builds the evaluator of the limit with normals for the 100k-quad torus at Catmull-Clark level
-//! 2, CALLS times, and one `subdivide` with the same options before each, printing both times:
-//! for a profiler's view of the build that the limit-surface issue holds to 3× a `subdivide`.
+//! Builds the evaluator of the limit with normals CALLS times, with one `subdivide` of the same
+//! options before each, and prints both times: a profiler's view of the build that the
+//! limit-surface issue holds to 3× a `subdivide`. By default the 100k-quad torus at
+//! Catmull-Clark level 2 (its faces are all regular patches); or an OBJ file, scheme and level.
 //!
-//!     cargo run --release --example evaluator_build -- [CALLS]
+//!     cargo run --release --example evaluator_build -- [CALLS] [FILE.obj SCHEME LEVELS]
 use std::time::Instant;
+use subsurf::io::obj::read_obj;
 use subsurf::shapes::torus;
 use subsurf::{Evaluator, HalfEdgeMesh, Options, Scheme, Tags};
 
 fn main() {
-    let calls: usize = std::env::args().nth(1).and_then(|n| n.parse().ok()).unwrap_or(3);
-    let mesh = torus(400, 250, 1.0, 0.25);
-    let mut options = Options::new(Scheme::CatmullClark, 2);
-    options.limit = true;
-    options.normals = true;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let calls: usize = args.first().and_then(|n| n.parse().ok()).unwrap_or(3);
+    let (mesh, options) = match &args[1.min(args.len())..] {
+        [path, scheme, levels] => {
+            let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+            let scheme: Scheme = scheme.parse().unwrap_or_else(|e| panic!("{e}"));
+            let levels = levels.parse().unwrap_or_else(|e| panic!("{levels}: {e}"));
+            (read_obj(&text).unwrap_or_else(|e| panic!("{e}")), Options::new(scheme, levels))
+        }
+        _ => (torus(400, 250, 1.0, 0.25), Options::new(Scheme::CatmullClark, 2)),
+    };
+    let options = Options { limit: true, normals: true, ..options };
     for _ in 0..calls {
         let start = Instant::now();
         let out = subsurf::scheme::subdivide_limit(&mesh, &options, &Tags::default());
