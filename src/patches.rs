@@ -203,7 +203,7 @@ impl RegularPatches {
         let mut rows = self.points.clone();
         rows.sort_unstable();
         table.with_rows(&rows, |v, entries| {
-            let (p, [i, j]) = owner[v as usize];
+            let Some(&(p, [i, j])) = owner.get(v as usize) else { return };
             let ([bi, di], [bj, dj]) = (self.basis[i as usize], self.basis[j as usize]);
             let controls = &self.controls[p as usize];
             for k in ascending[p as usize].map(usize::from) {

@@ -588,7 +588,7 @@ fn run_levels<'a, 'f, V: Primvar>(
     mut rows: V,
     mut fvar: Vec<FVarChannel<'f>>,
     finish: impl FnOnce(V, Vec<FVarChannel<'f>>) -> Channels,
-    stencil: Option<&mut StencilRequest<'_, V>>,
+    mut stencil: Option<&mut StencilRequest<'_, V>>,
     mut progress: Option<&mut OnProgress<'_>>,
 ) -> Result<Refined<'a>> {
     // The limit masks run on the last level's mesh, for the limit or for its normals.
@@ -808,7 +808,6 @@ fn run_levels<'a, 'f, V: Primvar>(
         // A stencil build's masks run once, for the rows.
         let want_tangent_rows = stencil_build && options.normals;
         let mut poly = mesh.to_poly();
-        let mut stencil = stencil;
         let elsewhere = match stencil.as_deref_mut().and_then(|s| s.made_elsewhere.as_mut()) {
             Some(made_elsewhere) => made_elsewhere(&poly),
             None => Vec::new(),
