@@ -156,15 +156,24 @@ impl RegularPatches {
         &self.rest
     }
 
-    /// Per output vertex (of `outputs`), whether a patch gives it.
-    pub(crate) fn given(&self, outputs: usize) -> Vec<bool> {
-        let mut given = vec![false; outputs];
-        for &v in &self.points {
-            if let Some(g) = given.get_mut(v as usize) {
-                *g = true;
+    /// Per output vertex (of `outputs`), its patch and sample `(i, j)`; `u32::MAX` for the
+    /// vertices no patch gives.
+    fn owners(&self, outputs: usize) -> Vec<(u32, [u8; 2])> {
+        let mut owners = vec![(u32::MAX, [0u8; 2]); outputs];
+        for p in 0..self.controls.len() {
+            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
+            for (&v, &ij) in self.points[range.clone()].iter().zip(&self.params[range]) {
+                if let Some(o) = owners.get_mut(v as usize) {
+                    *o = (p as u32, ij);
+                }
             }
         }
-        given
+        owners
+    }
+
+    /// Per output vertex (of `outputs`), whether a patch gives it.
+    pub(crate) fn given(&self, outputs: usize) -> Vec<bool> {
+        self.owners(outputs).iter().map(|&(p, _)| p != u32::MAX).collect()
     }
 
     /// Bytes that the rows of the patches' points take in a table (see [`Self::rows_into`]):
@@ -183,15 +192,7 @@ impl RegularPatches {
     /// `Far::LimitStencilTableFactory` takes them from its regular patches; composed through
     /// the levels they took most of the build (a limit row gathers about 95 parent entries).
     pub(crate) fn rows_into(&self, table: StencilTable) -> StencilTable {
-        let mut owner = vec![(0u32, [0u8; 2]); table.num_stencils()];
-        for p in 0..self.controls.len() {
-            let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
-            for (&v, &ij) in self.points[range.clone()].iter().zip(&self.params[range]) {
-                if let Some(o) = owner.get_mut(v as usize) {
-                    *o = (p as u32, ij);
-                }
-            }
-        }
+        let owners = self.owners(table.num_stencils());
         // Each patch's control points in ascending order, as every row of a table lists them.
         let ascending: Vec<[u8; 16]> = (self.controls.iter())
             .map(|controls| {
@@ -200,10 +201,10 @@ impl RegularPatches {
                 order
             })
             .collect();
-        let mut rows = self.points.clone();
-        rows.sort_unstable();
-        table.with_rows(&rows, |v, entries| {
-            let Some(&(p, [i, j])) = owner.get(v as usize) else { return };
+        table.with_rows(|v, entries| {
+            let Some(&(p, [i, j])) = owners.get(v as usize).filter(|o| o.0 != u32::MAX) else {
+                return false;
+            };
             let ([bi, di], [bj, dj]) = (self.basis[i as usize], self.basis[j as usize]);
             let controls = &self.controls[p as usize];
             for k in ascending[p as usize].map(usize::from) {
@@ -213,6 +214,7 @@ impl RegularPatches {
                     entries.push((controls[k], [w, bj[r] * di[c], dj[r] * bi[c]]));
                 }
             }
+            true
         })
     }
 

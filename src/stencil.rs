@@ -580,33 +580,33 @@ impl StencilTable {
             .then(|| StencilTable { tangent_weights: Some(Box::new([first, second])), ..self })
     }
 
-    /// This table with the rows `rows` lists (ascending) made by `fill(row, entries)`, which
-    /// appends a row's entries: a control vertex and its weights (the position's, then the two
-    /// tangents', which a table without tangents drops). The other rows stay as they are. For
-    /// rows that a stencil build left empty (`scheme::build_stencils`' `made_elsewhere`).
+    /// This table with the rows that `fill(row, entries)` makes: it appends a row's entries (a
+    /// control vertex and its weights: the position's, then the two tangents', which a table
+    /// without tangents drops) and says true, or false to keep the row as it is. For rows that
+    /// a stencil build left empty (`scheme::build_stencils`' `made_elsewhere`).
     pub(crate) fn with_rows(
         self,
-        rows: &[u32],
-        mut fill: impl FnMut(u32, &mut Vec<(u32, [f32; 3])>),
+        mut fill: impl FnMut(u32, &mut Vec<(u32, [f32; 3])>) -> bool,
     ) -> StencilTable {
         let StencilTable { num_control, offsets, indices, weights, tangent_weights } = self;
         let mut entries = Vec::with_capacity(16);
+        // Room for 16 entries (a patch's most) in each row left empty: the arrays are not moved
+        // while they grow.
+        let empty = offsets.windows(2).filter(|w| w[0] == w[1]).count();
+        let room = indices.len() + 16 * empty;
         let mut table = StencilTable {
             num_control,
             offsets: Vec::with_capacity(offsets.len()),
-            indices: Vec::with_capacity(indices.len() + 16 * rows.len()),
-            weights: Vec::with_capacity(weights.len() + 16 * rows.len()),
-            tangent_weights: tangent_weights.as_ref().map(|_| {
-                let room = || Vec::with_capacity(weights.len() + 16 * rows.len());
-                Box::new([room(), room()])
-            }),
+            indices: Vec::with_capacity(room),
+            weights: Vec::with_capacity(room),
+            tangent_weights: tangent_weights
+                .as_ref()
+                .map(|_| Box::new([Vec::with_capacity(room), Vec::with_capacity(room)])),
         };
         table.offsets.push(0);
-        let mut filled = rows.iter().copied().peekable();
         for (r, range) in offsets.windows(2).enumerate() {
-            if filled.next_if_eq(&(r as u32)).is_some() {
-                entries.clear();
-                fill(r as u32, &mut entries);
+            entries.clear();
+            if fill(r as u32, &mut entries) {
                 table.indices.extend(entries.iter().map(|&(c, _)| c));
                 table.weights.extend(entries.iter().map(|&(_, [w, ..])| w));
                 if let Some([first, second]) = table.tangent_weights.as_deref_mut() {
