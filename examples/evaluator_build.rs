@@ -1,9 +1,10 @@
 //! Builds the evaluator of the limit with normals CALLS times, with one `subdivide` of the same
 //! options before each, and prints both times: a profiler's view of the build that the
 //! limit-surface issue holds to 3× a `subdivide`. By default the 100k-quad torus at
-//! Catmull-Clark level 2 (its faces are all regular patches); or an OBJ file, scheme and level.
+//! Catmull-Clark level 2 (its faces are all regular patches); or an OBJ file, scheme and level,
+//! and `refined` for the refined table instead of the limit's.
 //!
-//!     cargo run --release --example evaluator_build -- [CALLS] [FILE.obj SCHEME LEVELS]
+//!     cargo run --release --example evaluator_build -- [CALLS] [FILE.obj SCHEME LEVELS [refined]]
 use std::time::Instant;
 use subsurf::io::obj::read_obj;
 use subsurf::shapes::torus;
@@ -12,7 +13,9 @@ use subsurf::{Evaluator, HalfEdgeMesh, Options, Scheme, Tags};
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let calls: usize = args.first().and_then(|n| n.parse().ok()).unwrap_or(3);
-    let (mesh, options) = match &args[1.min(args.len())..] {
+    let rest = &args[1.min(args.len())..];
+    let refined = rest.len() == 4 && rest[3] == "refined";
+    let (mesh, options) = match &rest[..rest.len().min(3)] {
         [path, scheme, levels] => {
             let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
             let scheme: Scheme = scheme.parse().unwrap_or_else(|e| panic!("{e}"));
@@ -21,10 +24,14 @@ fn main() {
         }
         _ => (torus(400, 250, 1.0, 0.25), Options::new(Scheme::CatmullClark, 2)),
     };
-    let options = Options { limit: true, normals: true, ..options };
+    let options = Options { limit: !refined, normals: !refined, ..options };
     for _ in 0..calls {
         let start = Instant::now();
-        let out = subsurf::scheme::subdivide_limit(&mesh, &options, &Tags::default());
+        let out = if refined {
+            subsurf::scheme::subdivide_refined(&mesh, &options, &Tags::default())
+        } else {
+            subsurf::scheme::subdivide_limit(&mesh, &options, &Tags::default())
+        };
         let subdivide = start.elapsed().as_secs_f64() * 1e3;
         drop(out);
         let start = Instant::now();

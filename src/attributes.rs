@@ -169,7 +169,7 @@ pub struct RowLayout {
 }
 
 /// The vertex-varying channels of `attributes` side by side, one row per vertex.
-pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows, RowLayout) {
+pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows<'_>, RowLayout) {
     let mut layout = RowLayout::default();
     for (i, a) in attributes.iter().enumerate().filter(|(_, a)| !a.is_face_varying()) {
         layout.channels.push((i, a.name.clone(), a.item_size, layout.width));
@@ -179,7 +179,13 @@ pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows, RowLayout) {
     if width == 0 {
         return (Rows::default(), layout);
     }
-    let values = interleave(attributes, &layout.channels, vertices, width);
+    let values = match layout.channels[..] {
+        [(i, _, size, _)] => {
+            let source = &attributes[i].values;
+            Cow::Borrowed(&source[..(vertices * size).min(source.len())])
+        }
+        _ => Cow::Owned(interleave(attributes, &layout.channels, vertices, width)),
+    };
     (Rows { width, values }, layout)
 }
 
@@ -208,10 +214,10 @@ fn interleave(
 
 /// The channels of `layout` taken back out of `rows`. A lone channel takes the rows' values as
 /// they are (no copy: a level-1 result of 1M quads has 4M rows).
-pub fn unpack(rows: Rows, layout: &RowLayout) -> Vec<Attribute> {
+pub fn unpack(rows: Rows<'_>, layout: &RowLayout) -> Vec<Attribute> {
     if let [(_, name, size, 0)] = &layout.channels[..] {
         if *size == rows.width {
-            return vec![Attribute::vertex(name.clone(), *size, rows.values)];
+            return vec![Attribute::vertex(name.clone(), *size, rows.values.into_owned())];
         }
     }
     layout
@@ -291,7 +297,7 @@ pub struct Channels {
 /// ones from `rows` ([`unpack`]), the face-varying ones from `channels`, with the last level's
 /// corner values as their indices.
 pub fn unpack_all(
-    rows: Rows,
+    rows: Rows<'_>,
     layout: &RowLayout,
     channels: Vec<FVarChannel<'_>>,
     fvar_layout: &FVarLayout,

@@ -949,8 +949,12 @@ impl<V: Primvar> Primal<'_, '_, '_, V> {
                     let fvar_values: Vec<_> = channels[usize::from(has_rows)..]
                         .iter()
                         .map(|c| {
-                            let values = Rows { width: c.width, values: c.values.to_vec() };
-                            Some(refine_rows::<S, R, Rows>(&mesh, rules, &values).values)
+                            let values = Rows { width: c.width, values: Cow::Borrowed(&c.values) };
+                            Some(
+                                refine_rows::<S, R, Rows>(&mesh, rules, &values)
+                                    .values
+                                    .into_owned(),
+                            )
                         })
                         .collect();
                     let rows = refine_rows::<S, R, V>(&mesh, rules, self.rows);
