@@ -1,0 +1,267 @@
+//! Four f32 sums in one 128-bit register, and unit normals made four at a time: what the
+//! evaluation loops of the tables and of the regular patches share.
+
+/// Points of three floats as four (the fourth 0), for 128-bit loads.
+pub(crate) fn pad(points: &[f32]) -> Vec<[f32; 4]> {
+    points.as_chunks::<3>().0.iter().map(|&[x, y, z]| [x, y, z, 0.0]).collect()
+}
+
+/// Four f32 sums in one 128-bit register: a padded point times a weight, added, is one load,
+/// one multiply and one add. In wasm they are spelled out with `simd128` intrinsics: written
+/// as a loop over `[f32; 4]`, LLVM saw that the fourth lane is never stored and split the other
+/// three into scalar multiply-adds, which V8 ran as such (three times the arithmetic of a point).
+/// Multiply then add, lane by lane, as the scalar loop: the sums are bit-identical.
+#[derive(Clone, Copy)]
+pub(crate) struct Lanes(
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))] core::arch::wasm32::v128,
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))] [f32; 4],
+);
+
+impl Lanes {
+    /// `self + x * w`.
+    #[inline(always)]
+    pub(crate) fn add_scaled(self, x: &[f32; 4], w: f32) -> Lanes {
+        self.add_lanes(Lanes::load(x), w)
+    }
+}
+
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+impl Lanes {
+    pub(crate) const ZERO: Lanes = Lanes(core::arch::wasm32::f32x4(0.0, 0.0, 0.0, 0.0));
+
+    /// A padded point in lanes.
+    #[inline(always)]
+    pub(crate) fn load(x: &[f32; 4]) -> Lanes {
+        use core::arch::wasm32::{v128, v128_load};
+        // SAFETY: `x` is 16 readable bytes; wasm loads need no alignment.
+        Lanes(unsafe { v128_load(x.as_ptr().cast::<v128>()) })
+    }
+
+    /// `self - x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn sub(self, x: Lanes) -> Lanes {
+        Lanes(core::arch::wasm32::f32x4_sub(self.0, x.0))
+    }
+
+    /// `self + x * w`, `x` in registers.
+    #[inline(always)]
+    pub(crate) fn add_lanes(self, x: Lanes, w: f32) -> Lanes {
+        use core::arch::wasm32::{f32x4_add, f32x4_mul, f32x4_splat};
+        Lanes(f32x4_add(self.0, f32x4_mul(x.0, f32x4_splat(w))))
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    pub(crate) fn xyz(self) -> [f32; 3] {
+        use core::arch::wasm32::f32x4_extract_lane;
+        [
+            f32x4_extract_lane::<0>(self.0),
+            f32x4_extract_lane::<1>(self.0),
+            f32x4_extract_lane::<2>(self.0),
+        ]
+    }
+}
+
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+impl Lanes {
+    pub(crate) const ZERO: Lanes = Lanes([0.0; 4]);
+
+    /// A padded point in lanes.
+    #[inline(always)]
+    pub(crate) fn load(x: &[f32; 4]) -> Lanes {
+        Lanes(*x)
+    }
+
+    /// `self - x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn sub(self, x: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|k| self.0[k] - x.0[k]))
+    }
+
+    /// `self + x * w`, `x` in registers.
+    #[inline(always)]
+    pub(crate) fn add_lanes(self, x: Lanes, w: f32) -> Lanes {
+        let mut sum = self.0;
+        for (s, x) in sum.iter_mut().zip(x.0) {
+            *s += x * w;
+        }
+        Lanes(sum)
+    }
+
+    /// The first three lanes.
+    #[inline(always)]
+    pub(crate) fn xyz(self) -> [f32; 3] {
+        [self.0[0], self.0[1], self.0[2]]
+    }
+}
+
+/// Unit normals of tangent pairs ([`crate::limit::normal`]), gathered in batches of [`BATCH`]
+/// and made four at a time: in wasm the four cross products, lengths and divisions run side by
+/// side in lanes, with exactly that function's f32 operations (the same results), and where
+/// its test sends one of them to f64 all four go through it. The last ones are written when the
+/// batch is dropped.
+///
+/// For the patches ([`crate::patches`]): 1.1 times faster per point there than one normal at a
+/// time. A table's rows keep one normal at a time: this measured 1.05 times slower in their
+/// loop with batches of four, and no faster with batches of 64.
+pub(crate) struct Normals<'o> {
+    out: &'o mut [[f32; 3]],
+    rows: [usize; BATCH],
+    tangents: [[Lanes; 2]; BATCH],
+    len: usize,
+}
+
+/// Tangent pairs a [`Normals`] holds before it makes their normals, out of line: V8 compiles
+/// the patches' loop worse with the normals' code inlined into it, and worse around a call
+/// every fourth point than once per `BATCH` (the torus's limit frame with normals in
+/// `bench/stencil_ab.mjs`: B/A 0.924 for the call out of line, then 0.936 for batches of 64
+/// rather than four).
+const BATCH: usize = 64;
+
+impl<'o> Normals<'o> {
+    pub(crate) fn new(out: &'o mut [[f32; 3]]) -> Self {
+        Normals { out, rows: [0; BATCH], tangents: [[Lanes::ZERO; 2]; BATCH], len: 0 }
+    }
+
+    /// The normal of `first × second` goes to `row`.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, row: usize, first: Lanes, second: Lanes) {
+        // `len` is below `BATCH` here (a full batch is flushed at once); the remainder says so
+        // to the compiler, which then checks no index.
+        let at = self.len % BATCH;
+        self.rows[at] = row;
+        self.tangents[at] = [first, second];
+        self.len = at + 1;
+        if self.len == BATCH {
+            self.flush();
+        }
+    }
+
+    // Out of line: see `BATCH`.
+    #[inline(never)]
+    fn flush(&mut self) {
+        let len = self.len;
+        let (tangents, _) = self.tangents[..].as_chunks::<4>();
+        let (rows, _) = self.rows[..].as_chunks::<4>();
+        for (k, (tangents, rows)) in tangents.iter().zip(rows).enumerate().take(len.div_ceil(4)) {
+            let normals = four_normals(tangents);
+            for (&row, normal) in rows.iter().zip(normals).take(len - 4 * k) {
+                if let Some(out) = self.out.get_mut(row) {
+                    *out = normal;
+                }
+            }
+        }
+        self.len = 0;
+    }
+}
+
+impl Drop for Normals<'_> {
+    fn drop(&mut self) {
+        self.flush();
+    }
+}
+
+/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]).
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+#[inline(always)]
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+    use core::arch::wasm32::*;
+    // Four points' x, y and z, each in one register.
+    let split = |v: [v128; 4]| {
+        let low =
+            [i32x4_shuffle::<0, 4, 1, 5>(v[0], v[1]), i32x4_shuffle::<0, 4, 1, 5>(v[2], v[3])];
+        let high =
+            [i32x4_shuffle::<2, 6, 3, 7>(v[0], v[1]), i32x4_shuffle::<2, 6, 3, 7>(v[2], v[3])];
+        [
+            i32x4_shuffle::<0, 1, 4, 5>(low[0], low[1]),
+            i32x4_shuffle::<2, 3, 6, 7>(low[0], low[1]),
+            i32x4_shuffle::<0, 1, 4, 5>(high[0], high[1]),
+        ]
+    };
+    let [ax, ay, az] = split(tangents.map(|[a, _]| a.0));
+    let [bx, by, bz] = split(tangents.map(|[_, b]| b.0));
+    let (mul, sub, add) = (f32x4_mul, f32x4_sub, f32x4_add);
+    let nx = sub(mul(ay, bz), mul(az, by));
+    let ny = sub(mul(az, bx), mul(ax, bz));
+    let nz = sub(mul(ax, by), mul(ay, bx));
+    let length2 = add(add(mul(nx, nx), mul(ny, ny)), mul(nz, nz));
+    let a2 = add(add(mul(ax, ax), mul(ay, ay)), mul(az, az));
+    let b2 = add(add(mul(bx, bx), mul(by, by)), mul(bz, bz));
+    let scale2 = mul(a2, b2);
+    let good = v128_and(
+        v128_and(
+            f32x4_ge(length2, mul(f32x4_splat(0.01), scale2)),
+            f32x4_gt(length2, f32x4_splat(1e-30)),
+        ),
+        f32x4_lt(scale2, f32x4_splat(1e30)),
+    );
+    if !i32x4_all_true(good) {
+        return tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()));
+    }
+    let inverse = f32x4_div(f32x4_splat(1.0), f32x4_sqrt(length2));
+    let [x, y, z] = [nx, ny, nz].map(|c| Lanes(mul(c, inverse)));
+    let lanes = |v: Lanes| -> [f32; 4] {
+        [
+            f32x4_extract_lane::<0>(v.0),
+            f32x4_extract_lane::<1>(v.0),
+            f32x4_extract_lane::<2>(v.0),
+            f32x4_extract_lane::<3>(v.0),
+        ]
+    };
+    let [x, y, z] = [lanes(x), lanes(y), lanes(z)];
+    std::array::from_fn(|k| [x[k], y[k], z[k]])
+}
+
+/// [`crate::limit::normal`] of four tangent pairs.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+#[inline(always)]
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+    tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A batch of normals writes each pushed pair's [`crate::limit::normal`] to its row, bit for
+    /// bit, for counts below, at and past a batch and rows in any order; rows never pushed keep
+    /// what they held. Also a wasm test: there the normals are made in lanes.
+    #[cfg_attr(target_arch = "wasm32", wasm_bindgen_test::wasm_bindgen_test)]
+    #[cfg_attr(not(target_arch = "wasm32"), test)]
+    fn normals_in_batches_are_each_pairs_normal() {
+        for count in [1, 3, 4, 5, BATCH - 1, BATCH, BATCH + 1, 2 * BATCH + 7] {
+            let rows = count + 2;
+            let mut out = vec![[9.0f32; 3]; rows];
+            // Every third pair along one line (its normal is zero, through the f64 path), the
+            // others at varied angles and lengths.
+            let pair = |k: usize| {
+                let t = k as f32 * 0.37;
+                let a = [t.cos(), t.sin(), 0.25 * k as f32];
+                let b =
+                    if k.is_multiple_of(3) { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
+                (a, b)
+            };
+            // Pushed in reverse row order, skipping rows 0 and 1.
+            let order: Vec<usize> = (2..rows).rev().collect();
+            {
+                let mut normals = Normals::new(&mut out);
+                for (k, &row) in order.iter().enumerate() {
+                    let (a, b) = pair(k);
+                    let lanes = |v: [f32; 3]| Lanes::load(&[v[0], v[1], v[2], 0.0]);
+                    normals.push(row, lanes(a), lanes(b));
+                }
+            }
+            assert_eq!(out[0], [9.0; 3], "count {count}");
+            assert_eq!(out[1], [9.0; 3], "count {count}");
+            for (k, &row) in order.iter().enumerate() {
+                let (a, b) = pair(k);
+                let expected = crate::limit::normal(a, b);
+                assert_eq!(
+                    out[row].map(f32::to_bits),
+                    expected.map(f32::to_bits),
+                    "count {count}, pair {k}"
+                );
+            }
+        }
+    }
+}
