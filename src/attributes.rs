@@ -179,28 +179,22 @@ pub fn pack(attributes: &[Attribute], vertices: usize) -> (Rows<'_>, RowLayout) 
     if width == 0 {
         return (Rows::default(), layout);
     }
-    let values = match layout.channels[..] {
-        [(i, _, size, _)] => {
-            let source = &attributes[i].values;
-            Cow::Borrowed(&source[..(vertices * size).min(source.len())])
-        }
-        _ => Cow::Owned(interleave(attributes, &layout.channels, vertices, width)),
-    };
+    let values = interleave(attributes, &layout.channels, vertices, width);
     (Rows { width, values }, layout)
 }
 
 /// `count` rows of `width` floats, with the values of each member `(attribute index, name,
-/// item size, first column)` side by side. A lone member is copied as it is (one memcpy, not one
-/// per row).
-fn interleave(
-    attributes: &[Attribute],
+/// item size, first column)` side by side. A lone member's values are borrowed as they are:
+/// the first level only reads them (12 MB not copied for a colour on 1M vertices).
+fn interleave<'a>(
+    attributes: &'a [Attribute],
     members: &[(usize, String, usize, usize)],
     count: usize,
     width: usize,
-) -> Vec<f32> {
+) -> Cow<'a, [f32]> {
     if let [(i, _, size, _)] = *members {
         let source = &attributes[i].values;
-        return source[..(count * size).min(source.len())].to_vec();
+        return Cow::Borrowed(&source[..(count * size).min(source.len())]);
     }
     let mut values = vec![0.0; count * width];
     for &(i, _, size, column) in members {
@@ -209,7 +203,7 @@ fn interleave(
             row[column..column + size].copy_from_slice(value);
         }
     }
-    values
+    Cow::Owned(values)
 }
 
 /// The channels of `layout` taken back out of `rows`. A lone channel takes the rows' values as
@@ -269,15 +263,8 @@ pub fn pack_face_varying(attributes: &[Attribute]) -> (Vec<FVarChannel<'_>>, FVa
         .map(|(members, indices)| {
             let width: usize = members.iter().map(|m| m.2).sum();
             let count = members.iter().map(|m| attributes[m.0].len()).min().unwrap_or(0);
-            // A lone channel's values and the indices are borrowed: the first level only reads
-            // them.
-            let values = match members[..] {
-                [(i, _, size, _)] => {
-                    let source = &attributes[i].values;
-                    Cow::Borrowed(&source[..(count * size).min(source.len())])
-                }
-                _ => Cow::Owned(interleave(attributes, members, count, width)),
-            };
+            // The indices are borrowed too: the first level only reads them.
+            let values = interleave(attributes, members, count, width);
             FVarChannel::new(width, values, Cow::Borrowed(indices))
         })
         .collect();

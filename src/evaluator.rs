@@ -8,7 +8,7 @@ use crate::attributes::Attribute;
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
-use crate::patches::RegularPatches;
+use crate::patches::{RegularPatches, NO_PATCH};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
 use crate::stencil::{pad, AllRows, StencilTable};
@@ -73,11 +73,12 @@ impl Evaluator {
             && tags.is_trivial()
             && options.schemes.iter().all(|&s| s == Scheme::CatmullClark);
         let levels = u32::try_from(options.levels()).unwrap_or(u32::MAX);
-        let mut patches = None;
+        let (mut patches, mut owners) = (None, Vec::new());
         let mut find_patches = |faces: &PolyMesh| {
             let outputs = faces.positions.len() / 3;
             patches = RegularPatches::new(base, faces, levels, outputs);
-            patches.as_ref().map_or_else(Vec::new, |p| p.given(outputs))
+            owners = patches.as_ref().map_or_else(Vec::new, |p| p.owners(outputs));
+            owners.iter().map(|&(p, _)| p != NO_PATCH).collect()
         };
         let made_elsewhere: Option<MadeElsewhere<'_>> = patchable.then_some(&mut find_patches);
         let mut build = build_stencils(base, attributes, options, tags, made_elsewhere)?;
@@ -87,7 +88,7 @@ impl Evaluator {
             if bytes > options.max_bytes {
                 return Err(Error::TooLarge(table_too_large(levels, bytes, options.max_bytes)));
             }
-            build.table = patches.rows_into(build.table);
+            build.table = patches.rows_into(build.table, &owners);
         }
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,

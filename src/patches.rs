@@ -23,6 +23,12 @@
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::stencil::{Lanes, Normals, StencilTable};
 
+/// An output vertex's patch and its sample `(i, j)` there ([`RegularPatches::owners`]).
+pub(crate) type Owner = (u32, [u8; 2]);
+
+/// The patch of an output vertex that no patch gives.
+pub(crate) const NO_PATCH: u32 = u32::MAX;
+
 /// The regular faces of a base mesh refined `levels` times, and for each the output vertices
 /// its patch gives (each output vertex belongs to at most one patch).
 #[derive(Clone, Debug, Default)]
@@ -156,10 +162,11 @@ impl RegularPatches {
         &self.rest
     }
 
-    /// Per output vertex (of `outputs`), its patch and sample `(i, j)`; `u32::MAX` for the
-    /// vertices no patch gives.
-    fn owners(&self, outputs: usize) -> Vec<(u32, [u8; 2])> {
-        let mut owners = vec![(u32::MAX, [0u8; 2]); outputs];
+    /// Per output vertex (of `outputs`), its patch and sample `(i, j)`; [`NO_PATCH`] for the
+    /// vertices no patch gives. A stencil build leaves the rows of the others empty, and
+    /// [`Self::rows_into`] writes them.
+    pub(crate) fn owners(&self, outputs: usize) -> Vec<Owner> {
+        let mut owners = vec![(NO_PATCH, [0u8; 2]); outputs];
         for p in 0..self.controls.len() {
             let range = self.offsets[p] as usize..self.offsets[p + 1] as usize;
             for (&v, &ij) in self.points[range.clone()].iter().zip(&self.params[range]) {
@@ -169,11 +176,6 @@ impl RegularPatches {
             }
         }
         owners
-    }
-
-    /// Per output vertex (of `outputs`), whether a patch gives it.
-    pub(crate) fn given(&self, outputs: usize) -> Vec<bool> {
-        self.owners(outputs).iter().map(|&(p, _)| p != u32::MAX).collect()
     }
 
     /// Bytes that the rows of the patches' points take in a table (see [`Self::rows_into`]):
@@ -191,8 +193,8 @@ impl RegularPatches {
     /// that are not 0. These are the limit stencils in closed form, as OpenSubdiv's
     /// `Far::LimitStencilTableFactory` takes them from its regular patches; composed through
     /// the levels they took most of the build (a limit row gathers about 95 parent entries).
-    pub(crate) fn rows_into(&self, table: StencilTable) -> StencilTable {
-        let owners = self.owners(table.num_stencils());
+    /// `owners` is [`Self::owners`] of the table's rows.
+    pub(crate) fn rows_into(&self, table: StencilTable, owners: &[Owner]) -> StencilTable {
         // Each patch's control points in ascending order, as every row of a table lists them.
         let ascending: Vec<[u8; 16]> = (self.controls.iter())
             .map(|controls| {
@@ -202,7 +204,7 @@ impl RegularPatches {
             })
             .collect();
         table.with_rows(|v, entries| {
-            let Some(&(p, [i, j])) = owners.get(v as usize).filter(|o| o.0 != u32::MAX) else {
+            let Some(&(p, [i, j])) = owners.get(v as usize).filter(|o| o.0 != NO_PATCH) else {
                 return false;
             };
             let ([bi, di], [bj, dj]) = (self.basis[i as usize], self.basis[j as usize]);

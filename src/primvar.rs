@@ -515,8 +515,7 @@ fn take<const W: usize, const N: usize>(point: &[f32; W], at: usize) -> [f32; N]
 
 /// Every vertex-varying channel side by side: `width` floats per vertex, in vertex order.
 /// Width 0 (no channel) costs nothing at any level. A lone channel's base values are the
-/// caller's, borrowed (the first level only reads them: 12 MB not copied for a colour on 1M
-/// vertices); every refined level owns its values.
+/// caller's, borrowed (`attributes::pack`); every refined level owns its values.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Rows<'a> {
     pub width: usize,
