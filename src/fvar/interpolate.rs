@@ -55,12 +55,12 @@ impl<R: MixedSplitRules> ValueRules for MixedRules<'_, R> {
     }
 }
 
-/// Fills `child`'s values (its topology from [`FVarLevel::child_topology`]) from `parent`'s,
+/// Fills `child`'s values (its topology from `FVarLevel::child_topology`) from `parent`'s,
 /// on `split` with `rules`. With `linear` (mode `all`, or a linear scheme), every value is
 /// interpolated linearly. `sharp` is the parent level's sharpness. `joint`, when given, holds
 /// the values numbered as the child's vertices as the surface's rules make them from the
 /// parent's vertex-numbered values (see [`crate::fvar::FVarChannel::vertex_values`]): they are
-/// right away from the cells `near_seams` ([`FVarLevel::cells_near_seams`] of `parent`), so
+/// right away from the cells `near_seams` (`FVarLevel::cells_near_seams` of `parent`), so
 /// only the rest is computed here.
 #[allow(clippy::too_many_arguments)]
 pub fn interpolate<F: ValueRules>(
@@ -272,7 +272,7 @@ fn visits(marks: Option<Vec<u8>>, tags: Option<&[u8]>, count: usize) -> impl Ite
     listed.unwrap_or_default().into_iter().chain(all)
 }
 
-/// The cells next to seams ([`FVarLevel::cells_near_seams`]) and their vertices and edges: the
+/// The cells next to seams (`FVarLevel::cells_near_seams`) and their vertices and edges: the
 /// rules of every other new value read vertex-numbered values only.
 struct NearSeams<'c> {
     cells: &'c [u32],

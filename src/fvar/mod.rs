@@ -39,8 +39,8 @@
 //!
 //! # Levels
 //!
-//! The first level's topology is analysed from the indices ([`FVarLevel::base`]); refined
-//! levels inherit it ([`FVarLevel::child_topology`]): each value of an old vertex has one child
+//! The first level's topology is analysed from the indices (`FVarLevel::base`); refined
+//! levels inherit it (`FVarLevel::child_topology`): each value of an old vertex has one child
 //! value, a face point has one, and the edge point of a seam one per face of the edge (each the
 //! midpoint of that side's values); a child keeps its parent value's tag, halves of a seam are
 //! seams, and inner edges are not. `all` and the bilinear and midpoint schemes interpolate every
@@ -140,7 +140,7 @@ pub struct FVarChannel<'a> {
 type Given<'a> = (Cow<'a, [f32]>, Cow<'a, [u32]>);
 
 /// A channel's next level between [`FVarChannel::begin`] and [`FVarChannel::finish`]: its
-/// topology, and the parent's cells next to seams ([`FVarLevel::cells_near_seams`]), which both
+/// topology, and the parent's cells next to seams (`FVarLevel::cells_near_seams`), which both
 /// steps read.
 #[derive(Debug)]
 pub struct FVarStep {

@@ -130,8 +130,8 @@ fn is_semi_sharp(s: f32) -> bool {
 }
 
 /// One level of a face-varying channel: its values (`width` floats each), the value each face
-/// corner (half-edge) sees, each value's tag ([`tag`]) and crease ends, and each edge's tag
-/// ([`edge_tag`]). A vertex's first value is numbered as the vertex; a vertex with several
+/// corner (half-edge) sees, each value's tag (`tag`) and crease ends, and each edge's tag
+/// (`edge_tag`). A vertex's first value is numbered as the vertex; a vertex with several
 /// values (only along seams) has the others after all vertices' first ones. So wherever a level
 /// has no seam, its value indices are its vertex indices, and refined corner values follow the
 /// child faces' own indices.
