@@ -5,7 +5,8 @@
 // median ms of each and the ratios of the best times to the plain call's (the attributes
 // issue's target for uv + color is at most 1.6; the medians catch the VM's spikes). Given
 // package directories (pkg/ of two worktrees, each from scripts/build-pkg.sh), it alternates
-// them too (each going first in every other round) and prints one line per package: the way to tell whether a change helped.
+// them too (each going first in every other round) and prints one line per package: the way to
+// tell whether a change helped.
 // INTO=1 passes each case's previous result as `into`, so that every call writes over arrays
 // it already has (a per-frame caller's steady state) instead of making fresh ones, whose
 // first-touch page faults are most of a call on our VMs.
