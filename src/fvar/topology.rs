@@ -536,8 +536,8 @@ impl FVarLevel {
         let mut numbering = Numbering::new(nv);
         // Room for a second value at each mismatched vertex (a seam's, most often), so that the
         // values after the vertices' first ones seldom move the whole array.
-        let mismatched = mismatch.iter().filter(|&&m| m).count();
-        let mut values_out = Vec::with_capacity((nv + 2 * mismatched) * width);
+        let mismatched: Vec<u32> = (0..nv as u32).filter(|&v| mismatch[v as usize]).collect();
+        let mut values_out = Vec::with_capacity((nv + 2 * mismatched.len()) * width);
         values_out.resize(nv * width, 0.0f32);
         let mut extra_values = Vec::new();
         // A vertex with one value numbers it as itself, so its corners see the vertex: start
@@ -547,8 +547,7 @@ impl FVarLevel {
         let maybe_non_manifold =
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
         // On a manifold mesh, a vertex that no seam or boundary rule touches has the one value
-        // its first corner sees: copied in one tight pass, the others visited after.
-        let mut visit = Vec::new();
+        // its first corner sees: copied in one tight pass, the mismatched ones visited after.
         if !maybe_non_manifold {
             let firsts = FirstValues { mesh, indices, mismatch: &mismatch };
             match width {
@@ -563,9 +562,8 @@ impl FVarLevel {
                     }
                 }
             }
-            visit.extend((0..nv as u32).filter(|&v| mismatch[v as usize]));
         }
-        let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { visit };
+        let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { mismatched };
         let (mut fan, mut siblings, mut uniques) = (Vec::new(), Vec::new(), Vec::new());
         for v in visit {
             let out = mesh.out_half_edges(v);
