@@ -343,8 +343,8 @@ impl Seams {
             }
         };
         if mesh.has_simple_edges() {
-            // A quad mesh's next corner is index arithmetic of its own
-            // (`HalfEdgeMesh::next_in_cell` tests the cell size on every call).
+            // On a mesh of quads or of triangles a corner's next is index arithmetic within its
+            // cell (`HalfEdgeMesh::next_in_cell` tests the cell size on every call).
             match mesh.cell_size {
                 4 => uniform_seams::<4>(mesh, indices, &mut boundary, mark_seam),
                 3 => uniform_seams::<3>(mesh, indices, &mut boundary, mark_seam),
@@ -374,9 +374,10 @@ impl Seams {
     }
 }
 
-/// [`Seams::find`] on a mesh with simple edges: each edge once, from its lower half-edge, in half-edge order. `h` runs from `a` to `b` and its twin `t`
-/// back, so `a`'s corners are `h` and `t`'s next, `b`'s are `h`'s next and `t` (fewer and more
-/// sequential reads than edge by edge).
+/// [`Seams::find`] on a mesh with simple edges: each edge once, from its lower half-edge, in
+/// half-edge order. `h` runs from `a` to `b` and its twin `t` back, so `a`'s corners are `h`
+/// and `t`'s next, `b`'s are `h`'s next and `t` (fewer and more sequential reads than edge by
+/// edge).
 fn simple_seams(
     mesh: &HalfEdgeMesh,
     indices: &[u32],
