@@ -5,6 +5,7 @@
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 20 s, every target)
 #   FUZZ_RUNS=1000000 scripts/fuzz.sh 0 subdivide        (a fixed number of executions instead)
+#   FUZZ_SANITIZER=address scripts/fuzz.sh 600          (under AddressSanitizer)
 #
 # The committed corpus (fuzz/corpus/TARGET) is read, never written: new inputs go to a scratch
 # directory. A crash stops the run with the input in fuzz/artifacts/TARGET/; reproduce it with
@@ -37,9 +38,12 @@ if ! command -v cargo-fuzz >/dev/null 2>&1 \
   cargo install cargo-fuzz --version "$CARGO_FUZZ_VERSION" --locked
 fi
 
-# No sanitizer: the crate has no unsafe code, and ASan would halve the executions. Debug
-# assertions (-a) turn on overflow checks, so arithmetic that would wrap is a crash.
-FLAGS=(-s none -a)
+# No sanitizer by default: ASan halves the executions. Debug assertions (-a) turn on overflow
+# checks, so arithmetic that would wrap is a crash, and the asserts beside the crate's unsafe
+# indexing (the stencil build and evaluation). The unsafe blocks (unchecked indexing, writes
+# into reserved room, SIMD loads) want an ASan run now and then:
+# `FUZZ_SANITIZER=address scripts/fuzz.sh 600`.
+FLAGS=(-s "${FUZZ_SANITIZER:-none}" -a)
 step "cargo +nightly fuzz build ${FLAGS[*]}"
 cargo +nightly fuzz build "${FLAGS[@]}"
 
