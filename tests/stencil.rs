@@ -273,10 +273,10 @@ fn assert_same_directions(got: &[f32], want: &[f32], tolerance: f64, what: &str)
 /// normals of the rows composed through the levels, and of the evaluator's own table (whose
 /// rows for the patches' points are the patches' B-spline weights): on every Catmull-Clark
 /// shape of OpenSubdiv's (untagged: tags turn the patches off), at levels 1 to 3, with and
-/// without normals, and on a torus, whose faces are all regular. The normals must agree to 1e-5 rad, what the GPU evaluator (which runs the
-/// rows) must meet against the CPU's. With both tangent sums taken on differences of points
-/// they are within 1e-6 rad; summed on the points, f32 put them 1.2e-4 rad apart on
-/// `catmark_car` at level 3.
+/// without normals, and on a torus, whose faces are all regular. The normals must agree to
+/// 1e-5 rad, what the GPU evaluator (which runs the rows) must meet against the CPU's. With
+/// both tangent sums taken on differences of points they are within 1e-6 rad; summed on the
+/// points, f32 put them 1.2e-4 rad apart on `catmark_car` at level 3.
 #[test]
 fn regular_patches_give_the_tables_points_and_normals() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/osd");

@@ -126,8 +126,8 @@ fn quad_error_unchecked(positions: &[f32], quad: [u32; 4]) -> f64 {
 /// diagonal per quad gets its own quads back: consecutive triangles `t`, `t + 1` that are a
 /// candidate are joined first, in order (exporters write a quad's two triangles together),
 /// and after the greedy pass, triangles left alone are joined where a short chain of
-/// re-pairings allows it (`Matching::augment`). A quad (u, q, v, p) of triangles (u, v, p) and (v, u, q) starts at
-/// the shared edge's corner in the lower triangle.
+/// re-pairings allows it (`Matching::augment`). A quad (u, q, v, p) of triangles (u, v, p) and
+/// (v, u, q) starts at the shared edge's corner in the lower triangle.
 ///
 /// Errors when the arrays do not fit each other.
 pub fn join_quads(
