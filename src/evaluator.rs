@@ -48,12 +48,26 @@ pub struct Evaluator {
     /// from their (much larger) stencil rows, with their normals; the table's rows give the
     /// others (see `Evaluator::new`).
     patches: Option<RegularPatches>,
-    /// The weights of the rows a frame reads, each distinct list once, when the table has
-    /// tangents and no [`Blocks`] hold them (see `crate::shared_weights`).
-    shared: Option<SharedWeights>,
-    /// The rows a frame reads, grouped by base face four at a time, when the table has
-    /// tangents and they fit in `max_bytes` beside it (see `crate::stencil::Blocks`).
-    blocks: Option<Blocks>,
+    /// How a frame sums the table's rows with tangents, made on the first frame (see
+    /// [`RowSums`]).
+    row_sums: OnceLock<RowSums>,
+    /// How many output faces each base face gives, for [`Blocks`].
+    runs: Vec<u32>,
+    /// The caller's memory limit, which the table and the blocks share.
+    max_bytes: u64,
+}
+
+/// How a frame sums the rows of a table with tangents: grouped by base face four at a time
+/// ([`Blocks`]), or where they do not fit in `max_bytes` beside the table, a row at a time with
+/// each distinct weight list once ([`SharedWeights`]), or as the table has them. Made on the
+/// first frame, not with the evaluator: they serve the CPU's frames only, and an evaluator
+/// whose frames run on the GPU (`js/webgpu.js` reads the table) never needs their memory
+/// (the horse's level-2 Catmull-Clark blocks: 174 MB) or the time to make them.
+#[derive(Clone, Debug)]
+enum RowSums {
+    Blocks(Blocks),
+    Shared(SharedWeights),
+    Table,
 }
 
 impl Evaluator {
@@ -109,31 +123,10 @@ impl Evaluator {
             build.table.evaluate(&a.values, a.item_size, &mut values)?;
             channels.push(Attribute::vertex(a.name.clone(), a.item_size, values));
         }
-        let blocks = match source {
-            NormalSource::Tangents => {
-                let covered: Vec<bool> = match &patches {
-                    Some(_) => owners.iter().map(|&(p, _)| p == NO_PATCH).collect(),
-                    None => Vec::new(),
-                };
-                let faces = &build.mesh;
-                let runs = base_face_runs(base, options, tags, faces.face_sizes.len());
-                let room = options.max_bytes.saturating_sub(build.table.bytes());
-                let (indices, sizes) = (&faces.indices, &faces.face_sizes);
-                Blocks::new(&build.table, indices, sizes, &runs, &covered, room)
-            }
-            _ => None,
-        };
-        let shared = match (source, build.table.tangent_weights()) {
-            _ if blocks.is_some() => None,
-            (NormalSource::Tangents, Some([first, second])) => {
-                let rows: Vec<usize> = match &patches {
-                    Some(patches) => patches.rest().iter().map(|&r| r as usize).collect(),
-                    None => (0..build.table.num_stencils()).collect(),
-                };
-                let weights = [build.table.weights(), first, second];
-                SharedWeights::new(build.table.offsets(), weights, &rows)
-            }
-            _ => None,
+        let faces = &build.mesh;
+        let runs = match source {
+            NormalSource::Tangents => base_face_runs(base, options, tags, faces.face_sizes.len()),
+            _ => Vec::new(),
         };
         Ok(Evaluator {
             table: build.table,
@@ -143,8 +136,40 @@ impl Evaluator {
             at_build: OnceLock::new(),
             source,
             patches,
-            shared,
-            blocks,
+            row_sums: OnceLock::new(),
+            runs,
+            max_bytes: options.max_bytes,
+        })
+    }
+
+    /// How a frame sums the rows (see [`RowSums`]), made on first use.
+    fn row_sums(&self) -> &RowSums {
+        self.row_sums.get_or_init(|| {
+            let table = &self.table;
+            let Some([first, second]) = table.tangent_weights() else {
+                return RowSums::Table;
+            };
+            let rest = self.patches.as_ref().map(|p| p.rest());
+            let mut covered = Vec::new();
+            if let Some(rest) = rest {
+                covered = vec![false; table.num_stencils()];
+                rest.iter().for_each(|&r| covered[r as usize] = true);
+            }
+            let room = self.max_bytes.saturating_sub(table.bytes());
+            let faces = &self.faces;
+            let (indices, sizes) = (&faces.indices, &faces.face_sizes);
+            if let Some(blocks) = Blocks::new(table, indices, sizes, &self.runs, &covered, room) {
+                return RowSums::Blocks(blocks);
+            }
+            let rows: Vec<usize> = match rest {
+                Some(rest) => rest.iter().map(|&r| r as usize).collect(),
+                None => (0..table.num_stencils()).collect(),
+            };
+            let weights = [table.weights(), first, second];
+            match SharedWeights::new(table.offsets(), weights, &rows) {
+                Some(shared) => RowSums::Shared(shared),
+                None => RowSums::Table,
+            }
         })
     }
 
@@ -276,15 +301,17 @@ impl Evaluator {
             match (self.source, normals) {
                 (NormalSource::Tangents, Some(normals)) => {
                     let (normals, _) = normals.as_chunks_mut::<3>();
-                    match &self.blocks {
-                        Some(blocks) => blocks.evaluate(&control, positions, normals),
-                        None => self.table.points_and_normals(
-                            &control,
-                            patches.rest(),
-                            positions,
-                            normals,
-                            self.shared.as_ref(),
-                        ),
+                    let rest = patches.rest();
+                    match self.row_sums() {
+                        RowSums::Blocks(blocks) => blocks.evaluate(&control, positions, normals),
+                        RowSums::Shared(shared) => {
+                            let shared = Some(shared);
+                            self.table
+                                .points_and_normals(&control, rest, positions, normals, shared)
+                        }
+                        RowSums::Table => {
+                            self.table.points_and_normals(&control, rest, positions, normals, None)
+                        }
                     }
                     patches.evaluate_with_normals(&control, positions, normals);
                 }
@@ -296,15 +323,15 @@ impl Evaluator {
             return Ok(());
         }
         match (self.source, normals) {
-            (NormalSource::Tangents, Some(normals)) => match (&self.blocks, &self.shared) {
-                (Some(blocks), _) => {
+            (NormalSource::Tangents, Some(normals)) => match self.row_sums() {
+                RowSums::Blocks(blocks) => {
                     let control = pad(control);
                     let (positions, _) = positions.as_chunks_mut::<3>();
                     let (normals, _) = normals.as_chunks_mut::<3>();
                     blocks.evaluate(&control, positions, normals);
                     Ok(())
                 }
-                (None, Some(shared)) => {
+                RowSums::Shared(shared) => {
                     let control = pad(control);
                     let (positions, _) = positions.as_chunks_mut::<3>();
                     let (normals, _) = normals.as_chunks_mut::<3>();
@@ -312,7 +339,7 @@ impl Evaluator {
                     self.table.points_and_normals(&control, rows, positions, normals, Some(shared));
                     Ok(())
                 }
-                (None, None) => self.table.evaluate_with_normals(control, positions, normals),
+                RowSums::Table => self.table.evaluate_with_normals(control, positions, normals),
             },
             (NormalSource::Faces, Some(normals)) => {
                 self.table.evaluate(control, 3, positions)?;
@@ -455,7 +482,8 @@ mod tests {
                 options.max_bytes = table + 64;
             }
             let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
-            assert_eq!(evaluator.blocks.is_some(), room, "{what}");
+            let blocks = matches!(evaluator.row_sums(), RowSums::Blocks(_));
+            assert_eq!(blocks, room, "{what}");
             let control: Vec<f32> = mesh
                 .positions
                 .iter()
