@@ -4,9 +4,7 @@
 // same mesh, scheme, level and stencil count. Refined stencils ("refined") and the limit with
 // normals ("limit": OpenSubdiv's LimitStencilTable with du/dv, ours with the two tangent weights
 // and the normal computed per point). Also: our evaluator's build time against one `subdivide`
-// call with the same options, both tables' bytes per output point, and our first frame's time
-// (it also makes what later frames read: see `RowSums` in src/evaluator.rs). Figures, not
-// assertions.
+// call with the same options, and both tables' bytes per output point. Figures, not assertions.
 //
 //   node bench/stencil.mjs [REPEATS]     (after scripts/build-pkg.sh; default 10 timed frames)
 //
@@ -53,8 +51,8 @@ const median = (times) => [...times].sort((a, b) => a - b)[times.length >> 1];
 const best = (times) => Math.min(...times);
 const timeIt = (n, f) => Array.from({ length: n }, () => { const s = performance.now(); f(); return performance.now() - s; });
 
-console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | OSD B/pt | ours B/pt | build/subdivide | first frame ms |`);
-console.log('|---|---|---|---|---|---|---|---|---|---|---|');
+console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | OSD B/pt | ours B/pt | build/subdivide |`);
+console.log('|---|---|---|---|---|---|---|---|---|---|');
 for (const [name, path, scheme, level] of cases) {
   const mesh = readObj(readFileSync(path, 'utf8'));
   const base = new BaseMesh({ positions: mesh.positions, indices: mesh.indices, faceSizes: mesh.faceSizes });
@@ -77,10 +75,7 @@ for (const [name, path, scheme, level] of cases) {
       for (let i = 0; i < control.length; i++) control[i] = mesh.positions[i] * s;
     };
     step();
-    // The first frame also makes what the CPU's frames read (see `RowSums` in src/evaluator.rs).
-    const firstStart = performance.now();
-    frame = evaluator.evaluate(control, frame);
-    const firstMs = performance.now() - firstStart;
+    frame = evaluator.evaluate(control, frame); // warm-up
     const times = [];
     for (let r = 0; r < repeats; r++) {
       step();
@@ -91,7 +86,7 @@ for (const [name, path, scheme, level] of cases) {
     const oursNs = (median(times) * 1e6) / points;
     const osdNs = reference ? Number(reference.ns_per_stencil) : NaN;
     const ourBytes = evaluator.stencilBytes / points;
-    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) | ${firstMs.toFixed(0)} |`);
+    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) |`);
     if (reference && Number(reference.stencils) !== points) console.log(`  (stencil counts differ: OSD ${reference.stencils}, ours ${points})`);
     evaluator.free();
   }

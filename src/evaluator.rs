@@ -11,7 +11,7 @@ use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
-use crate::stencil::{pad, AllRows, Blocks, StencilTable};
+use crate::stencil::{pad, AllRows, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
 
@@ -48,26 +48,9 @@ pub struct Evaluator {
     /// from their (much larger) stencil rows, with their normals; the table's rows give the
     /// others (see `Evaluator::new`).
     patches: Option<RegularPatches>,
-    /// How a frame sums the table's rows with tangents, made on the first frame (see
-    /// [`RowSums`]).
-    row_sums: OnceLock<RowSums>,
-    /// How many output faces each base face gives, for [`Blocks`].
-    runs: Vec<u32>,
-    /// The caller's memory limit, which the table and the blocks share.
-    max_bytes: u64,
-}
-
-/// How a frame sums the rows of a table with tangents: grouped by base face four at a time
-/// ([`Blocks`]), or where they do not fit in `max_bytes` beside the table, a row at a time with
-/// each distinct weight list once ([`SharedWeights`]), or as the table has them. Made on the
-/// first frame, not with the evaluator: they serve the CPU's frames only, and an evaluator
-/// whose frames run on the GPU (`js/webgpu.js` reads the table) never needs their memory
-/// (the horse's level-2 Catmull-Clark blocks: 174 MB) or the time to make them.
-#[derive(Clone, Debug)]
-enum RowSums {
-    Blocks(Blocks),
-    Shared(SharedWeights),
-    Table,
+    /// The weights of the rows a frame reads, each distinct list once, when the table has
+    /// tangents (see `crate::shared_weights`).
+    shared: Option<SharedWeights>,
 }
 
 impl Evaluator {
@@ -123,10 +106,16 @@ impl Evaluator {
             build.table.evaluate(&a.values, a.item_size, &mut values)?;
             channels.push(Attribute::vertex(a.name.clone(), a.item_size, values));
         }
-        let faces = &build.mesh;
-        let runs = match source {
-            NormalSource::Tangents => base_face_runs(base, options, tags, faces.face_sizes.len()),
-            _ => Vec::new(),
+        let shared = match (source, build.table.tangent_weights()) {
+            (NormalSource::Tangents, Some([first, second])) => {
+                let rows: Vec<usize> = match &patches {
+                    Some(patches) => patches.rest().iter().map(|&r| r as usize).collect(),
+                    None => (0..build.table.num_stencils()).collect(),
+                };
+                let weights = [build.table.weights(), first, second];
+                SharedWeights::new(build.table.offsets(), weights, &rows)
+            }
+            _ => None,
         };
         Ok(Evaluator {
             table: build.table,
@@ -136,40 +125,7 @@ impl Evaluator {
             at_build: OnceLock::new(),
             source,
             patches,
-            row_sums: OnceLock::new(),
-            runs,
-            max_bytes: options.max_bytes,
-        })
-    }
-
-    /// How a frame sums the rows (see [`RowSums`]), made on first use.
-    fn row_sums(&self) -> &RowSums {
-        self.row_sums.get_or_init(|| {
-            let table = &self.table;
-            let Some([first, second]) = table.tangent_weights() else {
-                return RowSums::Table;
-            };
-            let rest = self.patches.as_ref().map(|p| p.rest());
-            let mut covered = Vec::new();
-            if let Some(rest) = rest {
-                covered = vec![false; table.num_stencils()];
-                rest.iter().for_each(|&r| covered[r as usize] = true);
-            }
-            let room = self.max_bytes.saturating_sub(table.bytes());
-            let faces = &self.faces;
-            let (indices, sizes) = (&faces.indices, &faces.face_sizes);
-            if let Some(blocks) = Blocks::new(table, indices, sizes, &self.runs, &covered, room) {
-                return RowSums::Blocks(blocks);
-            }
-            let rows: Vec<usize> = match rest {
-                Some(rest) => rest.iter().map(|&r| r as usize).collect(),
-                None => (0..table.num_stencils()).collect(),
-            };
-            let weights = [table.weights(), first, second];
-            match SharedWeights::new(table.offsets(), weights, &rows) {
-                Some(shared) => RowSums::Shared(shared),
-                None => RowSums::Table,
-            }
+            shared,
         })
     }
 
@@ -301,18 +257,14 @@ impl Evaluator {
             match (self.source, normals) {
                 (NormalSource::Tangents, Some(normals)) => {
                     let (normals, _) = normals.as_chunks_mut::<3>();
-                    let rest = patches.rest();
-                    match self.row_sums() {
-                        RowSums::Blocks(blocks) => blocks.evaluate(&control, positions, normals),
-                        RowSums::Shared(shared) => {
-                            let shared = Some(shared);
-                            self.table
-                                .points_and_normals(&control, rest, positions, normals, shared)
-                        }
-                        RowSums::Table => {
-                            self.table.points_and_normals(&control, rest, positions, normals, None)
-                        }
-                    }
+                    let shared = self.shared.as_ref();
+                    self.table.points_and_normals(
+                        &control,
+                        patches.rest(),
+                        positions,
+                        normals,
+                        shared,
+                    );
                     patches.evaluate_with_normals(&control, positions, normals);
                 }
                 _ => {
@@ -323,15 +275,8 @@ impl Evaluator {
             return Ok(());
         }
         match (self.source, normals) {
-            (NormalSource::Tangents, Some(normals)) => match self.row_sums() {
-                RowSums::Blocks(blocks) => {
-                    let control = pad(control);
-                    let (positions, _) = positions.as_chunks_mut::<3>();
-                    let (normals, _) = normals.as_chunks_mut::<3>();
-                    blocks.evaluate(&control, positions, normals);
-                    Ok(())
-                }
-                RowSums::Shared(shared) => {
+            (NormalSource::Tangents, Some(normals)) => match &self.shared {
+                Some(shared) => {
                     let control = pad(control);
                     let (positions, _) = positions.as_chunks_mut::<3>();
                     let (normals, _) = normals.as_chunks_mut::<3>();
@@ -339,7 +284,7 @@ impl Evaluator {
                     self.table.points_and_normals(&control, rows, positions, normals, Some(shared));
                     Ok(())
                 }
-                RowSums::Table => self.table.evaluate_with_normals(control, positions, normals),
+                None => self.table.evaluate_with_normals(control, positions, normals),
             },
             (NormalSource::Faces, Some(normals)) => {
                 self.table.evaluate(control, 3, positions)?;
@@ -370,143 +315,29 @@ impl Evaluator {
     }
 }
 
-/// How many output faces each base face gives, in base-face order, for grouping the rows by
-/// base face ([`Blocks`]): each level of Catmull-Clark's and bilinear's split gives an n-gon n
-/// children, Loop's, midpoint's and Quad/Triangle's a face four, and every split numbers a
-/// parent's children together, in the parents' order; holes' faces are left out. Where the
-/// counts do not add up to the output's faces (another scheme at some level), runs of the
-/// average count instead: a worse grouping, not a wrong one.
-fn base_face_runs(base: &HalfEdgeMesh, options: &Options, tags: &Tags, faces: usize) -> Vec<u32> {
-    let cells = base.num_cells();
-    let mut runs = vec![1u64; cells];
-    for &hole in &tags.holes {
-        if let Some(run) = runs.get_mut(hole as usize) {
-            *run = 0;
-        }
-    }
-    let mut known = true;
-    for (level, scheme) in options.schemes.iter().enumerate() {
-        match scheme {
-            Scheme::CatmullClark | Scheme::Bilinear if level == 0 => {
-                for (c, run) in runs.iter_mut().enumerate() {
-                    let size = base.cell_offsets[c + 1] - base.cell_offsets[c];
-                    *run *= u64::from(size);
-                }
-            }
-            Scheme::CatmullClark
-            | Scheme::Bilinear
-            | Scheme::Loop
-            | Scheme::Midpoint
-            | Scheme::QuadTriangle => runs.iter_mut().for_each(|run| *run *= 4),
-            _ => known = false,
-        }
-    }
-    if known && runs.iter().sum::<u64>() == faces as u64 {
-        return runs.into_iter().map(|n| u32::try_from(n).unwrap_or(u32::MAX)).collect();
-    }
-    let average = (faces / cells.max(1)).clamp(1, u32::MAX as usize) as u32;
-    vec![average; faces.div_ceil(average as usize)]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tags::Crease;
 
     /// A cage of few neighbourhoods (the icosahedron's twelve vertices are all alike) shares
     /// its limit rows' weights, and the frame from the shared weights is the table's own, bit
-    /// for bit. (With room for blocks, as here, the evaluator itself uses those instead.)
+    /// for bit.
     #[test]
     fn shared_weights_give_the_tables_frame() {
         let mesh = crate::shapes::icosahedron();
         let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
         let options = Options { limit: true, normals: true, ..Options::new(Scheme::Loop, 3) };
         let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
-        let table = evaluator.table();
-        let [first, second] = table.tangent_weights().unwrap();
-        let all: Vec<usize> = (0..table.num_stencils()).collect();
-        let shared = SharedWeights::new(table.offsets(), [table.weights(), first, second], &all);
-        let shared = shared.unwrap();
+        assert!(evaluator.shared.is_some());
         let control: Vec<f32> =
             mesh.positions.iter().enumerate().map(|(i, x)| x * (1.0 + i as f32 / 100.0)).collect();
-        let n = evaluator.num_vertices();
-        let (mut positions, mut normals) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
-        let rows = AllRows(n);
-        table.points_and_normals(&pad(&control), rows, &mut positions, &mut normals, Some(&shared));
-        let (mut want, mut want_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-        table.evaluate_with_normals(&control, &mut want, &mut want_normals).unwrap();
+        let n = 3 * evaluator.num_vertices();
+        let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+        evaluator.evaluate(&control, &mut positions, Some(&mut normals)).unwrap();
+        let (mut want, mut want_normals) = (vec![0.0; n], vec![0.0; n]);
+        evaluator.table().evaluate_with_normals(&control, &mut want, &mut want_normals).unwrap();
         let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(positions.as_flattened()), bits(&want));
-        assert_eq!(bits(normals.as_flattened()), bits(&want_normals));
-    }
-
-    /// An evaluator with limit normals groups its rows into blocks by base face, and their
-    /// frame is the rows' to f32 rounding, every row written: Loop and Catmull-Clark, with
-    /// creases, holes, n-gons, regular patches beside the blocks, and with no room for the
-    /// blocks (the shared rows then). Also a wasm test: there the blocks and normals run in
-    /// lanes.
-    #[cfg_attr(target_arch = "wasm32", wasm_bindgen_test::wasm_bindgen_test)]
-    #[cfg_attr(not(target_arch = "wasm32"), test)]
-    fn blocks_give_the_rows_frame() {
-        let mut creased = crate::shapes::grid_with_hole(6, 5, 2..4, 1..3);
-        creased.positions.iter_mut().skip(2).step_by(3).enumerate().for_each(|(i, z)| {
-            *z = (i as f32 * 0.7).sin() * 0.3;
-        });
-        let crease = |a, b, sharpness| Crease { vertices: [a, b], sharpness };
-        let creased_tags = Tags {
-            creases: vec![crease(0, 1, 2.0), crease(1, 2, 2.0), crease(7, 8, 1.5)],
-            holes: vec![0, 5],
-            ..Tags::default()
-        };
-        let cases = [
-            (crate::shapes::icosahedron(), Scheme::Loop, 3, Tags::default(), true),
-            (
-                crate::shapes::torus_triangles(9, 7, 1.0, 0.3),
-                Scheme::Loop,
-                2,
-                Tags::default(),
-                true,
-            ),
-            (crate::shapes::prism(5), Scheme::CatmullClark, 2, Tags::default(), true),
-            (crate::shapes::dodecahedron(), Scheme::CatmullClark, 3, Tags::default(), true),
-            (creased.clone(), Scheme::CatmullClark, 2, creased_tags.clone(), true),
-            (creased, Scheme::CatmullClark, 2, creased_tags, false),
-        ];
-        for (mesh, scheme, levels, tags, room) in cases {
-            let what = format!("{scheme:?} L{levels}, {} faces, room {room}", mesh.num_faces());
-            let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
-            let mut options =
-                Options { limit: true, normals: true, ..Options::new(scheme, levels) };
-            if !room {
-                let table = Evaluator::new(&base, &[], &options, &tags).unwrap().table.bytes();
-                options.max_bytes = table + 64;
-            }
-            let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
-            let blocks = matches!(evaluator.row_sums(), RowSums::Blocks(_));
-            assert_eq!(blocks, room, "{what}");
-            let control: Vec<f32> = mesh
-                .positions
-                .iter()
-                .enumerate()
-                .map(|(i, x)| x * (1.0 + (i % 7) as f32 / 50.0))
-                .collect();
-            let n = 3 * evaluator.num_vertices();
-            let (mut positions, mut normals) = (vec![f32::NAN; n], vec![f32::NAN; n]);
-            evaluator.evaluate(&control, &mut positions, Some(&mut normals)).unwrap();
-            let (mut want, mut want_normals) = (vec![0.0; n], vec![0.0; n]);
-            let table = evaluator.table();
-            table.evaluate_with_normals(&control, &mut want, &mut want_normals).unwrap();
-            for (v, (got, want)) in positions.chunks(3).zip(want.chunks(3)).enumerate() {
-                let close = got.iter().zip(want).all(|(g, w)| (g - w).abs() <= 1e-5);
-                assert!(close, "{what}: vertex {v}: {got:?} against {want:?}");
-            }
-            for (v, (got, want)) in normals.chunks(3).zip(want_normals.chunks(3)).enumerate() {
-                // Zero where the tangents are (a vertex only holes use): zero in both.
-                let dot: f32 = got.iter().zip(want).map(|(g, w)| g * w).sum();
-                let zero = |n: &[f32]| n.iter().all(|&x| x == 0.0);
-                let same = dot > 1.0 - 1e-6 || zero(got) && zero(want);
-                assert!(same, "{what}: normal {v}: {got:?} against {want:?}");
-            }
-        }
+        assert_eq!(bits(&positions), bits(&want));
+        assert_eq!(bits(&normals), bits(&want_normals));
     }
 }

@@ -1,29 +1,9 @@
 //! Four f32 sums in one 128-bit register, and unit normals made four at a time: what the
 //! evaluation loops of the tables and of the regular patches share.
 
-/// Points of three floats as four (the fourth 0), for 128-bit loads, each on a 16-byte
-/// boundary (a load across two cache lines costs twice).
-pub(crate) fn pad(points: &[f32]) -> Padded {
-    Padded(points.as_chunks::<3>().0.iter().map(|&[x, y, z]| Aligned([x, y, z, 0.0])).collect())
-}
-
-/// Four floats on a 16-byte boundary.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[repr(C, align(16))]
-pub(crate) struct Aligned(pub [f32; 4]);
-
-/// Padded points (see [`pad`]), read as `[[f32; 4]]`.
-pub(crate) struct Padded(Vec<Aligned>);
-
-impl std::ops::Deref for Padded {
-    type Target = [[f32; 4]];
-
-    fn deref(&self) -> &[[f32; 4]] {
-        // SAFETY: `Aligned` is `repr(C)` around one `[f32; 4]` and 16 bytes in size (its
-        // alignment adds no padding), so `n` of them are `n` arrays of four floats, and the
-        // stricter alignment satisfies the arrays'.
-        unsafe { std::slice::from_raw_parts(self.0.as_ptr().cast::<[f32; 4]>(), self.0.len()) }
-    }
+/// Points of three floats as four (the fourth 0), for 128-bit loads.
+pub(crate) fn pad(points: &[f32]) -> Vec<[f32; 4]> {
+    points.as_chunks::<3>().0.iter().map(|&[x, y, z]| [x, y, z, 0.0]).collect()
 }
 
 /// Four f32 sums in one 128-bit register: a padded point times a weight, added, is one load,
@@ -80,38 +60,6 @@ impl Lanes {
             f32x4_extract_lane::<2>(self.0),
         ]
     }
-
-    /// The four lanes.
-    #[inline(always)]
-    pub(crate) fn lanes(self) -> [f32; 4] {
-        use core::arch::wasm32::f32x4_extract_lane;
-        [
-            f32x4_extract_lane::<0>(self.0),
-            f32x4_extract_lane::<1>(self.0),
-            f32x4_extract_lane::<2>(self.0),
-            f32x4_extract_lane::<3>(self.0),
-        ]
-    }
-
-    /// Lane `L` in every lane.
-    #[inline(always)]
-    pub(crate) fn splat<const L: usize>(self) -> Lanes {
-        use core::arch::wasm32::i32x4_shuffle;
-        Lanes(i32x4_shuffle::<L, L, L, L>(self.0, self.0))
-    }
-
-    /// `self + x`, lane by lane.
-    #[inline(always)]
-    pub(crate) fn add(self, x: Lanes) -> Lanes {
-        Lanes(core::arch::wasm32::f32x4_add(self.0, x.0))
-    }
-
-    /// `self + a * b`, lane by lane (a multiply, then an add).
-    #[inline(always)]
-    pub(crate) fn add_product(self, a: Lanes, b: Lanes) -> Lanes {
-        use core::arch::wasm32::{f32x4_add, f32x4_mul};
-        Lanes(f32x4_add(self.0, f32x4_mul(a.0, b.0)))
-    }
 }
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
@@ -144,30 +92,6 @@ impl Lanes {
     #[inline(always)]
     pub(crate) fn xyz(self) -> [f32; 3] {
         [self.0[0], self.0[1], self.0[2]]
-    }
-
-    /// The four lanes.
-    #[inline(always)]
-    pub(crate) fn lanes(self) -> [f32; 4] {
-        self.0
-    }
-
-    /// Lane `L` in every lane.
-    #[inline(always)]
-    pub(crate) fn splat<const L: usize>(self) -> Lanes {
-        Lanes([self.0[L]; 4])
-    }
-
-    /// `self + x`, lane by lane.
-    #[inline(always)]
-    pub(crate) fn add(self, x: Lanes) -> Lanes {
-        Lanes(std::array::from_fn(|k| self.0[k] + x.0[k]))
-    }
-
-    /// `self + a * b`, lane by lane (a multiply, then an add).
-    #[inline(always)]
-    pub(crate) fn add_product(self, a: Lanes, b: Lanes) -> Lanes {
-        Lanes(std::array::from_fn(|k| self.0[k] + a.0[k] * b.0[k]))
     }
 }
 
@@ -238,54 +162,24 @@ impl Drop for Normals<'_> {
 }
 
 /// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]).
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 #[inline(always)]
 fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
-    let [a0, a1, a2, a3] = tangents.map(|[a, _]| a);
-    let [b0, b1, b2, b3] = tangents.map(|[_, b]| b);
-    let [x, y, z] = four_normals_of_lanes(transpose([a0, a1, a2, a3]), transpose([b0, b1, b2, b3]))
-        .map(Lanes::lanes);
-    std::array::from_fn(|k| [x[k], y[k], z[k]])
-}
-
-/// Four padded points as their x, y and z, each in one `Lanes`.
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-#[inline(always)]
-fn transpose(v: [Lanes; 4]) -> [Lanes; 3] {
-    use core::arch::wasm32::i32x4_shuffle;
-    let v = v.map(|l| l.0);
-    let low = [i32x4_shuffle::<0, 4, 1, 5>(v[0], v[1]), i32x4_shuffle::<0, 4, 1, 5>(v[2], v[3])];
-    let high = [i32x4_shuffle::<2, 6, 3, 7>(v[0], v[1]), i32x4_shuffle::<2, 6, 3, 7>(v[2], v[3])];
-    [
-        Lanes(i32x4_shuffle::<0, 1, 4, 5>(low[0], low[1])),
-        Lanes(i32x4_shuffle::<2, 3, 6, 7>(low[0], low[1])),
-        Lanes(i32x4_shuffle::<0, 1, 4, 5>(high[0], high[1])),
-    ]
-}
-
-/// Four padded points as their x, y and z, each in one `Lanes`.
-#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
-#[inline(always)]
-fn transpose(v: [Lanes; 4]) -> [Lanes; 3] {
-    std::array::from_fn(|c| Lanes(std::array::from_fn(|k| v[k].0[c])))
-}
-
-/// [`crate::limit::normal`] of the four tangent pairs whose x, y and z are `a` and `b`'s lanes,
-/// as the normals' x, y and z in lanes: in wasm the cross products, lengths and divisions run
-/// side by side in lanes, with exactly that function's f32 operations (the same results), and
-/// where its test sends one of them to f64 all four go through it.
-#[inline(always)]
-pub(crate) fn four_normals_of_lanes(a: [Lanes; 3], b: [Lanes; 3]) -> [Lanes; 3] {
-    normals_in_lanes(a, b).unwrap_or_else(|| one_by_one(a, b))
-}
-
-/// [`four_normals_of_lanes`] where all four take that function's f32 path, in lanes; `None`
-/// where one of them needs its f64 path (then [`one_by_one`] gives them).
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-#[inline(always)]
-pub(crate) fn normals_in_lanes(a: [Lanes; 3], b: [Lanes; 3]) -> Option<[Lanes; 3]> {
     use core::arch::wasm32::*;
-    let [ax, ay, az] = a.map(|l| l.0);
-    let [bx, by, bz] = b.map(|l| l.0);
+    // Four points' x, y and z, each in one register.
+    let split = |v: [v128; 4]| {
+        let low =
+            [i32x4_shuffle::<0, 4, 1, 5>(v[0], v[1]), i32x4_shuffle::<0, 4, 1, 5>(v[2], v[3])];
+        let high =
+            [i32x4_shuffle::<2, 6, 3, 7>(v[0], v[1]), i32x4_shuffle::<2, 6, 3, 7>(v[2], v[3])];
+        [
+            i32x4_shuffle::<0, 1, 4, 5>(low[0], low[1]),
+            i32x4_shuffle::<2, 3, 6, 7>(low[0], low[1]),
+            i32x4_shuffle::<0, 1, 4, 5>(high[0], high[1]),
+        ]
+    };
+    let [ax, ay, az] = split(tangents.map(|[a, _]| a.0));
+    let [bx, by, bz] = split(tangents.map(|[_, b]| b.0));
     let (mul, sub, add) = (f32x4_mul, f32x4_sub, f32x4_add);
     let nx = sub(mul(ay, bz), mul(az, by));
     let ny = sub(mul(az, bx), mul(ax, bz));
@@ -302,71 +196,27 @@ pub(crate) fn normals_in_lanes(a: [Lanes; 3], b: [Lanes; 3]) -> Option<[Lanes; 3
         f32x4_lt(scale2, f32x4_splat(1e30)),
     );
     if !i32x4_all_true(good) {
-        return None;
+        return tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()));
     }
     let inverse = f32x4_div(f32x4_splat(1.0), f32x4_sqrt(length2));
-    Some([nx, ny, nz].map(|c| Lanes(mul(c, inverse))))
+    let [x, y, z] = [nx, ny, nz].map(|c| Lanes(mul(c, inverse)));
+    let lanes = |v: Lanes| -> [f32; 4] {
+        [
+            f32x4_extract_lane::<0>(v.0),
+            f32x4_extract_lane::<1>(v.0),
+            f32x4_extract_lane::<2>(v.0),
+            f32x4_extract_lane::<3>(v.0),
+        ]
+    };
+    let [x, y, z] = [lanes(x), lanes(y), lanes(z)];
+    std::array::from_fn(|k| [x[k], y[k], z[k]])
 }
 
-/// [`four_normals_of_lanes`] in lanes: never outside wasm, where [`one_by_one`] is as fast.
+/// [`crate::limit::normal`] of four tangent pairs.
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 #[inline(always)]
-pub(crate) fn normals_in_lanes(_: [Lanes; 3], _: [Lanes; 3]) -> Option<[Lanes; 3]> {
-    None
-}
-
-/// [`crate::limit::normal`] of each lane's tangent pair, as the normals' x, y and z in lanes.
-/// Out of line in wasm, where it is the rare path (a lane whose normal needs f64).
-#[cfg_attr(all(target_arch = "wasm32", target_feature = "simd128"), cold, inline(never))]
-#[cfg_attr(not(all(target_arch = "wasm32", target_feature = "simd128")), inline(always))]
-pub(crate) fn one_by_one(a: [Lanes; 3], b: [Lanes; 3]) -> [Lanes; 3] {
-    let (a, b) = (a.map(Lanes::lanes), b.map(Lanes::lanes));
-    let normals: [[f32; 3]; 4] = std::array::from_fn(|k| {
-        crate::limit::normal([a[0][k], a[1][k], a[2][k]], [b[0][k], b[1][k], b[2][k]])
-    });
-    transpose(normals.map(|[x, y, z]| Lanes::load(&[x, y, z, 0.0])))
-}
-
-/// Writes lane `k` of `xyz` (x, y and z of four points) to `out[rows[k]]`: in wasm as an
-/// 8-byte and a 4-byte store per point from shuffled lanes, not twelve lane extractions.
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-#[inline(always)]
-pub(crate) fn store_four(out: &mut [[f32; 3]], rows: [u32; 4], [x, y, z]: [Lanes; 3]) {
-    use core::arch::wasm32::*;
-    let (x, y, z) = (x.0, y.0, z.0);
-    // x0 y0 x1 y1 and x2 y2 x3 y3.
-    let low = i32x4_shuffle::<0, 4, 1, 5>(x, y);
-    let high = i32x4_shuffle::<2, 6, 3, 7>(x, y);
-    let [r0, r1, r2, r3] = rows.map(|r| r as usize);
-    if r0.max(r1).max(r2).max(r3) >= out.len() {
-        return;
-    }
-    // SAFETY: each row is below `out.len()` (checked above), and each point is 12 writable
-    // bytes, written as its first 8 and its last 4; wasm stores need no alignment.
-    unsafe {
-        let base = out.as_mut_ptr();
-        let at = |r: usize| base.add(r).cast::<f32>();
-        v128_store64_lane::<0>(low, at(r0).cast());
-        v128_store32_lane::<0>(z, at(r0).add(2).cast());
-        v128_store64_lane::<1>(low, at(r1).cast());
-        v128_store32_lane::<1>(z, at(r1).add(2).cast());
-        v128_store64_lane::<0>(high, at(r2).cast());
-        v128_store32_lane::<2>(z, at(r2).add(2).cast());
-        v128_store64_lane::<1>(high, at(r3).cast());
-        v128_store32_lane::<3>(z, at(r3).add(2).cast());
-    }
-}
-
-/// Writes lane `k` of `xyz` (x, y and z of four points) to `out[rows[k]]`.
-#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
-#[inline(always)]
-pub(crate) fn store_four(out: &mut [[f32; 3]], rows: [u32; 4], xyz: [Lanes; 3]) {
-    let [x, y, z] = xyz.map(Lanes::lanes);
-    for (k, &r) in rows.iter().enumerate() {
-        if let Some(out) = out.get_mut(r as usize) {
-            *out = [x[k], y[k], z[k]];
-        }
-    }
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+    tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()))
 }
 
 #[cfg(test)]

@@ -16,11 +16,9 @@
 //! `build` composes the rows while the levels run; `lanes` holds the 128-bit sums and the
 //! batched normals that the evaluation loops here and the patches share.
 
-mod blocks;
 mod build;
 mod lanes;
 
-pub(crate) use blocks::Blocks;
 pub(crate) use build::Stencils;
 pub(crate) use lanes::{pad, Lanes, Normals};
 
