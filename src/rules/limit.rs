@@ -58,6 +58,7 @@ use super::crease::{for_each_incident_edge, LevelTags};
 use super::Weights;
 use crate::mesh::HalfEdgeMesh;
 use crate::options::{Boundary, Scheme};
+use std::borrow::Cow;
 
 /// The rule of a vertex at the limit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -89,6 +90,49 @@ pub struct Neighbourhood {
     /// Catmull-Clark's masks (else Loop's): the scheme's, or for Quad/Triangle the vertex's
     /// faces' (see [`LimitRules::scheme`]).
     pub catmull_clark: bool,
+    /// The smooth tangents' cosines and sines, made once per valence rather than once per
+    /// vertex (they were a tenth of a limit `subdivide` in wasm, whose `cos` is software).
+    angles: Angles,
+}
+
+/// Per valence `n`, `[cos, sin]` of `2πi/n` for `i` in `0..=n` (the last is the first again,
+/// as computed: `cos(n · 2π/n)`), and Catmull-Clark's face scale `1/(4λ - 1)`.
+#[derive(Clone, Debug, Default)]
+struct Angles {
+    rows: Vec<(Vec<[f64; 2]>, f64)>,
+}
+
+impl Angles {
+    /// Makes the table of valence `n` if it is not there.
+    fn prepare(&mut self, n: usize) {
+        if self.rows.len() <= n {
+            self.rows.resize(n + 1, (Vec::new(), 0.0));
+        }
+        if self.rows[n].0.is_empty() {
+            self.rows[n] = Self::valence(n);
+        }
+    }
+
+    /// The table of valence `n`: [`Angles::prepare`]'s, or made now (a neighbourhood that
+    /// [`LimitRules::gather`] did not fill).
+    fn of(&self, n: usize) -> Cow<'_, (Vec<[f64; 2]>, f64)> {
+        match self.rows.get(n) {
+            Some(row) if row.0.len() == n + 1 => Cow::Borrowed(row),
+            _ => Cow::Owned(Self::valence(n)),
+        }
+    }
+
+    fn valence(n: usize) -> (Vec<[f64; 2]>, f64) {
+        let theta = std::f64::consts::TAU / n as f64;
+        let angles = (0..=n).map(|i| {
+            let a = theta * i as f64;
+            [a.cos(), a.sin()]
+        });
+        // λ, Catmull-Clark's subdominant eigenvalue at valence n.
+        let lambda = 5.0 / 16.0
+            + (theta.cos() + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt()) / 16.0;
+        (angles.collect(), 1.0 / (4.0 * lambda - 1.0))
+    }
 }
 
 /// The limit masks of Catmull-Clark or Loop on one level (see the module docs): `tags` is the
@@ -203,6 +247,7 @@ impl LimitRules<'_> {
         } else if sharp_count == 2 {
             LimitRule::Crease(sharp)
         } else {
+            hood.angles.prepare(hood.faces.len());
             LimitRule::Smooth
         };
     }
@@ -232,8 +277,9 @@ impl LimitRules<'_> {
                     }
                     _ if n == 6 => (0.5, 1.0 / 12.0, 0.0),
                     _ => {
+                        let cos = hood.angles.of(n).0.get(1).map_or(1.0, |a| a[0]);
                         let n = n as f64;
-                        let beta = 0.25 * (std::f64::consts::TAU / n).cos() + 0.375;
+                        let beta = 0.25 * cos + 0.375;
                         let gamma = (0.625 - beta * beta) / n;
                         let e = 1.0 / (n + 3.0 / (8.0 * gamma));
                         (1.0 - e * n, e, 0.0)
@@ -271,117 +317,98 @@ impl LimitRules<'_> {
         let loop_scheme = !hood.catmull_clark;
         let edge = |i: usize| hood.edges.get(i).copied();
         let face = |i: usize| hood.faces.get(i).copied();
-        let add = |w: &mut dyn FnMut(u32, f64), at: Option<u32>, weight: f64| {
-            if let Some(c) = at {
-                if weight != 0.0 {
-                    w(c, weight);
-                }
-            }
+        // Catmull-Clark's vertex of two faces takes the corner's tangents.
+        let corner = match hood.rule {
+            LimitRule::Corner => true,
+            LimitRule::Smooth => !loop_scheme && hood.faces.len() == 2,
+            _ => false,
         };
-        let mut t1 = |c: u32, x: f64| first.corner(c, x as f32);
-        let mut t2 = |c: u32, x: f64| second.corner(c, x as f32);
-        let corner = |t1: &mut dyn FnMut(u32, f64), t2: &mut dyn FnMut(u32, f64)| {
+        if corner {
             let s = if loop_scheme { 3.0 } else { 1.0 };
-            add(t1, edge(0), s);
-            add(t2, edge(1), s);
-            s
-        };
+            add(first, edge(0), s);
+            add(second, edge(1), s);
+            first.vertex(v, -s as f32);
+            second.vertex(v, -s as f32);
+            return;
+        }
         match hood.rule {
-            LimitRule::Isolated => {}
-            LimitRule::Corner => {
-                let s = corner(&mut t1, &mut t2);
-                first.vertex(v, -s as f32);
-                second.vertex(v, -s as f32);
-            }
-            LimitRule::Smooth if !loop_scheme && hood.faces.len() == 2 => {
-                let s = corner(&mut t1, &mut t2);
-                first.vertex(v, -s as f32);
-                second.vertex(v, -s as f32);
-            }
+            LimitRule::Isolated | LimitRule::Corner => {}
             LimitRule::Smooth => {
                 let n = hood.faces.len();
-                let theta = std::f64::consts::TAU / n as f64;
+                let table = hood.angles.of(n);
+                let (angles, face_scale) = (&table.0, table.1);
                 if loop_scheme {
-                    for i in 0..n {
-                        let a = theta * i as f64;
-                        add(&mut t1, edge(i), a.cos());
-                        add(&mut t2, edge(i), a.sin());
+                    for (i, &[cos, sin]) in angles.iter().take(n).enumerate() {
+                        add(first, edge(i), cos);
+                        add(second, edge(i), sin);
                     }
                 } else {
                     let cos = |i: usize| {
                         if n == 4 {
                             [1.0, 0.0, -1.0, 0.0][i % 4]
                         } else {
-                            (theta * i as f64).cos()
+                            angles.get(i).map_or(0.0, |a| a[0])
                         }
                     };
-                    let face_scale = if n == 4 {
-                        1.0
-                    } else {
-                        let lambda = 5.0 / 16.0
-                            + (theta.cos()
-                                + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt())
-                                / 16.0;
-                        1.0 / (4.0 * lambda - 1.0)
-                    };
+                    let face_scale = if n == 4 { 1.0 } else { face_scale };
                     // `second` is `first` rotated by one: its weight at `i` is `first`'s at `i - 1`.
                     let face_weight = |i: usize| face_scale * (cos(i) + cos(i + 1));
                     for i in 0..n {
-                        add(&mut t1, face(i), face_weight(i));
-                        add(&mut t2, face(i), face_weight((i + n - 1) % n));
+                        add(first, face(i), face_weight(i));
+                        add(second, face(i), face_weight((i + n - 1) % n));
                     }
                     for i in 0..n {
-                        add(&mut t1, edge(i), 4.0 * cos(i));
-                        add(&mut t2, edge(i), 4.0 * cos((i + n - 1) % n));
+                        add(first, edge(i), 4.0 * cos(i));
+                        add(second, edge(i), 4.0 * cos((i + n - 1) % n));
                     }
                 }
             }
             LimitRule::Crease([c0, c1]) => {
                 let (c0, c1) = (c0 as usize, c1 as usize);
                 let along = if loop_scheme { 1.5 } else { 0.5 };
-                add(&mut t1, edge(c0), along);
-                add(&mut t1, edge(c1), -along);
+                add(first, edge(c0), along);
+                add(first, edge(c1), -along);
                 let interior = c1 - c0 - 1;
                 let mut center = 0.0;
                 if interior == 0 {
                     // No face between the sharp edges: across runs from the vertex to the
                     // midpoint of their ends (both schemes).
                     center = -6.0;
-                    add(&mut t2, edge(c0), 3.0);
-                    add(&mut t2, edge(c1), 3.0);
+                    add(second, edge(c0), 3.0);
+                    add(second, edge(c1), 3.0);
                 } else if loop_scheme {
                     match interior {
                         1 => {
                             center = -3.0;
-                            add(&mut t2, edge(c0 + 1), 3.0);
+                            add(second, edge(c0 + 1), 3.0);
                         }
                         2 => {
                             let root3 = 3f64.sqrt();
                             center = -root3;
-                            add(&mut t2, edge(c0), -0.5 * root3);
-                            add(&mut t2, edge(c1), -0.5 * root3);
-                            add(&mut t2, edge(c0 + 1), root3);
-                            add(&mut t2, edge(c0 + 2), root3);
+                            add(second, edge(c0), -0.5 * root3);
+                            add(second, edge(c1), -0.5 * root3);
+                            add(second, edge(c0 + 1), root3);
+                            add(second, edge(c0 + 2), root3);
                         }
                         k => {
                             let theta = std::f64::consts::PI / (k + 1) as f64;
                             let ends = -3.0 * theta.sin();
-                            add(&mut t2, edge(c0), ends);
-                            add(&mut t2, edge(c1), ends);
+                            add(second, edge(c0), ends);
+                            add(second, edge(c1), ends);
                             let coefficient = -6.0 * (theta.cos() - 1.0);
                             for i in 1..=k {
-                                add(&mut t2, edge(c0 + i), coefficient * (i as f64 * theta).sin());
+                                add(second, edge(c0 + i), coefficient * (i as f64 * theta).sin());
                             }
                         }
                     }
                 } else {
                     match interior {
                         1 => {
-                            add(&mut t2, face(c0), 1.0 / 6.0);
-                            add(&mut t2, face(c0 + 1), 1.0 / 6.0);
-                            add(&mut t2, edge(c0), -1.0 / 6.0);
-                            add(&mut t2, edge(c0 + 1), 4.0 / 6.0);
-                            add(&mut t2, edge(c1), -1.0 / 6.0);
+                            add(second, face(c0), 1.0 / 6.0);
+                            add(second, face(c0 + 1), 1.0 / 6.0);
+                            add(second, edge(c0), -1.0 / 6.0);
+                            add(second, edge(c0 + 1), 4.0 / 6.0);
+                            add(second, edge(c1), -1.0 / 6.0);
                             center = -4.0 / 6.0;
                         }
                         k => {
@@ -390,18 +417,18 @@ impl LimitRules<'_> {
                             let (cos, sin) = (theta.cos(), theta.sin());
                             let denominator = 1.0 / (k * (3.0 + cos));
                             let r = (cos + 1.0) / sin;
-                            add(&mut t2, face(c0), sin * denominator);
+                            add(second, face(c0), sin * denominator);
                             let mut sin_i;
                             let mut sin_next = sin;
                             for i in 1..(k as usize) {
                                 sin_i = sin_next;
                                 sin_next = ((i + 1) as f64 * theta).sin();
-                                add(&mut t2, face(c0 + i), (sin_i + sin_next) * denominator);
-                                add(&mut t2, edge(c0 + i), 4.0 * sin_i * denominator);
+                                add(second, face(c0 + i), (sin_i + sin_next) * denominator);
+                                add(second, edge(c0 + i), 4.0 * sin_i * denominator);
                             }
                             let ends = -r * (1.0 + 2.0 * cos) * denominator;
-                            add(&mut t2, edge(c0), ends);
-                            add(&mut t2, edge(c1), ends);
+                            add(second, edge(c0), ends);
+                            add(second, edge(c1), ends);
                             center = 4.0 * r * (cos - 1.0) * denominator;
                         }
                     }
@@ -410,6 +437,16 @@ impl LimitRules<'_> {
                     second.vertex(v, center as f32);
                 }
             }
+        }
+    }
+}
+
+/// Adds `weight` on corner `at`, when there is one and the weight is not 0.
+#[inline(always)]
+fn add(w: &mut impl Weights, at: Option<u32>, weight: f64) {
+    if let Some(c) = at {
+        if weight != 0.0 {
+            w.corner(c, weight as f32);
         }
     }
 }

@@ -469,30 +469,38 @@ impl LimitSum {
 /// control vertex whose three sums cancelled is left out.
 fn emit(touched: &[u32], sums: &[Slot], [a, b, c]: [&mut Stencils; 3]) {
     let start = a.indices.len();
-    // Whole slices, so that the copies run without a capacity check per entry (as
-    // `Stencils::append_row`); an entry whose sums all cancelled (rare) is taken out after.
-    a.indices.extend_from_slice(touched);
-    for (k, rows) in [&mut *a, &mut *b, &mut *c].into_iter().enumerate() {
-        rows.weights.extend(touched.iter().map(|&control| sums[control as usize].sums[k]));
-    }
-    if touched.iter().any(|&control| sums[control as usize].sums == [0.0; 3]) {
-        let mut kept = start;
-        for i in start..a.indices.len() {
-            let w = [a.weights[i], b.weights[i], c.weights[i]];
-            if w != [0.0; 3] {
-                a.indices[kept] = a.indices[i];
-                for (rows, w) in [&mut *a, &mut *b, &mut *c].into_iter().zip(w) {
-                    rows.weights[kept] = w;
-                }
-                kept += 1;
-            }
+    let count = touched.len();
+    let lengths = [a.weights.len(), b.weights.len(), c.weights.len()];
+    // One pass that reads each slot once and writes the four arrays in reserved room, through
+    // local slices: in wasm, a pass per array took 12 ns per entry (a sixth of a limit table's
+    // build), and a pass that wrote through the vectors reloaded their pointers per entry.
+    a.indices.reserve(count);
+    let indices = &mut a.indices.spare_capacity_mut()[..count];
+    let [x, y, z] = [&mut a.weights, &mut b.weights, &mut c.weights].map(|w| {
+        w.reserve(count);
+        &mut w.spare_capacity_mut()[..count]
+    });
+    let mut kept = 0;
+    for &control in touched {
+        let w = sums.get(control as usize).map_or([0.0; 3], |slot| slot.sums);
+        // `kept` counts the entries before this one that were kept: below `count`.
+        if let (Some(i), Some(x), Some(y), Some(z)) =
+            (indices.get_mut(kept), x.get_mut(kept), y.get_mut(kept), z.get_mut(kept))
+        {
+            i.write(control);
+            x.write(w[0]);
+            y.write(w[1]);
+            z.write(w[2]);
         }
-        a.indices.truncate(kept);
-        for rows in [&mut *a, &mut *b, &mut *c] {
-            rows.weights.truncate(kept);
-        }
+        kept += usize::from(w != [0.0; 3]);
     }
-    let span = [start as u32, (a.indices.len() - start) as u32];
+    // SAFETY: the loop wrote the first `kept` of the `count` entries reserved after `start`.
+    unsafe { a.indices.set_len(start + kept) };
+    for (rows, length) in [&mut *a, &mut *b, &mut *c].into_iter().zip(lengths) {
+        // SAFETY: as above, the first `kept` of the `count` floats reserved after `length`.
+        unsafe { rows.weights.set_len(length + kept) };
+    }
+    let span = [start as u32, kept as u32];
     for rows in [a, b, c] {
         rows.spans.push(span);
     }
