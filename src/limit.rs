@@ -5,8 +5,9 @@
 
 use crate::fvar::{tag, FVarLevel};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::primvar::{FVarSum, PointSum, Primvar, RowSum};
-use crate::rules::limit::{LimitRules, Neighbourhood};
+use crate::primvar::{FVarSum, LimitSources, PointSum, Primvar, RowSum};
+use crate::rules::limit::{LimitRule, LimitRules, Neighbourhood};
+use crate::rules::Source;
 use crate::rules::Stencil;
 use glam::DVec3;
 
@@ -109,18 +110,156 @@ pub fn evaluate<V: Primvar>(
     }
     let mut tangents = None;
     if with_rows && tangent_rows {
-        let (positions, both) = rows.limit_rows(mesh, &mut |v, [position, first, second]| {
+        let mut masks = MaskMerge::new(mesh.num_vertices());
+        let (positions, both) = rows.limit_rows(mesh, &mut |v, sources| {
             if elsewhere(v) {
                 return;
             }
             rules.gather(mesh, v, &mut hood);
-            rules.position(&hood, position);
-            rules.tangents(&hood, first, second);
+            masks.merge(rules, &hood, &mesh.he_from, sources);
         });
         out_rows = positions;
         tangents = Some(both);
     }
     (frame, out_rows, tangents)
+}
+
+/// One vertex's three limit masks (position, two tangents) merged per vertex of the level, for
+/// the rows of a stencil table: each weighted vertex once, in the order the masks first name it
+/// (the position's mask first), with its three weights.
+///
+/// A smooth vertex's masks depend on its valence and scheme only, so its merged masks are kept
+/// per valence as weights on the slots of its neighbourhood (the vertex, its edges' ends, its
+/// faces' opposite corners) and reused: the masks and their merge were a fifth of a limit
+/// table's build, for a million vertices of a few valences. A vertex whose slots name some
+/// vertex twice (a degenerate face or edge) is merged from its masks, as every other rule is.
+/// Merged masks by slot of a neighbourhood: 0 the vertex, `1..=E` its edges' ends, then its
+/// faces' opposite corners.
+type SlotMasks = Vec<(usize, [f32; 3])>;
+
+struct MaskMerge {
+    recorded: [Stencil; 3],
+    /// Per level vertex, the stamp of the vertex that last listed it, and where.
+    listed: Vec<(u32, u32)>,
+    stamp: u32,
+    /// Per scheme (Loop, Catmull-Clark) and valence, a smooth vertex's merged masks by slot.
+    smooth: [Vec<Option<SlotMasks>>; 2],
+    /// The vertices of the slots the masks of one valence weight.
+    slots: Vec<u32>,
+}
+
+impl MaskMerge {
+    fn new(vertices: usize) -> Self {
+        MaskMerge {
+            recorded: Default::default(),
+            listed: vec![(0, 0); vertices],
+            stamp: 0,
+            smooth: Default::default(),
+            slots: Vec::new(),
+        }
+    }
+
+    /// The merged masks of the vertex `hood` was gathered for, into `sources` (empty).
+    fn merge(
+        &mut self,
+        rules: &LimitRules,
+        hood: &Neighbourhood,
+        he_from: &[u32],
+        sources: &mut LimitSources,
+    ) {
+        let slot_vertex = |slot: usize| match slot {
+            0 => Some(hood.vertex),
+            i if i <= hood.edges.len() => Some(he_from[hood.edges[i - 1] as usize]),
+            i => hood.faces.get(i - 1 - hood.edges.len()).map(|&h| he_from[h as usize]),
+        };
+        let n = hood.faces.len();
+        let smooth = hood.rule == LimitRule::Smooth && hood.edges.len() == n;
+        let kept = smooth.then(|| &self.smooth[usize::from(hood.catmull_clark)]);
+        if let Some(Some(Some(template))) = kept.map(|t| t.get(n)) {
+            self.slots.clear();
+            self.slots.extend(template.iter().filter_map(|&(slot, _)| slot_vertex(slot)));
+            let distinct = self.slots.len() == template.len()
+                && self.slots.iter().enumerate().all(|(i, v)| !self.slots[..i].contains(v));
+            if distinct {
+                sources.extend(self.slots.iter().zip(template).map(|(&v, &(_, w))| (v, w)));
+                return;
+            }
+        }
+        for mask in &mut self.recorded {
+            mask.sources.clear();
+        }
+        let [position, first, second] = &mut self.recorded;
+        rules.position(hood, position);
+        rules.tangents(hood, first, second);
+        self.merge_recorded(he_from, sources);
+        if smooth {
+            self.keep(hood, n);
+        }
+    }
+
+    /// Merges the recorded masks per vertex, through the stamps.
+    fn merge_recorded(&mut self, he_from: &[u32], sources: &mut LimitSources) {
+        if self.stamp == u32::MAX {
+            self.listed.iter_mut().for_each(|l| l.0 = 0);
+            self.stamp = 0;
+        }
+        self.stamp += 1;
+        let stamp = self.stamp;
+        for (k, mask) in self.recorded.iter().enumerate() {
+            for &(source, weight) in &mask.sources {
+                let vertex = match source {
+                    Source::Vertex(v) => v,
+                    Source::Corner(h) => he_from[h as usize],
+                    // Limit masks weight no face point.
+                    Source::FacePoint(_) => continue,
+                };
+                let entry = &mut self.listed[vertex as usize];
+                if entry.0 == stamp {
+                    sources[entry.1 as usize].1[k] += weight;
+                } else {
+                    *entry = (stamp, sources.len() as u32);
+                    let mut w = [0.0; 3];
+                    w[k] = weight;
+                    sources.push((vertex, w));
+                }
+            }
+        }
+    }
+
+    /// Keeps the recorded masks of a smooth vertex of valence `n` as weights by slot, merged per
+    /// slot in the order first named (as [`MaskMerge::merge_recorded`] merges them per vertex).
+    fn keep(&mut self, hood: &Neighbourhood, n: usize) {
+        let kept = &mut self.smooth[usize::from(hood.catmull_clark)];
+        if kept.len() <= n {
+            kept.resize(n + 1, None);
+        }
+        if kept[n].is_some() {
+            return;
+        }
+        let slot_of = |source: Source| match source {
+            Source::Vertex(v) => (v == hood.vertex).then_some(0),
+            Source::Corner(h) => match hood.edges.iter().position(|&e| e == h) {
+                Some(i) => Some(1 + i),
+                None => hood.faces.iter().position(|&f| f == h).map(|i| 1 + hood.edges.len() + i),
+            },
+            Source::FacePoint(_) => None,
+        };
+        let mut template = SlotMasks::new();
+        for (k, mask) in self.recorded.iter().enumerate() {
+            for &(source, weight) in &mask.sources {
+                let Some(slot) = slot_of(source) else { return };
+                match template.iter_mut().find(|t| t.0 == slot) {
+                    Some(t) => t.1[k] += weight,
+                    None => {
+                        let mut w = [0.0; 3];
+                        w[k] = weight;
+                        template.push((slot, w));
+                    }
+                }
+            }
+        }
+        kept[n] = Some(template);
+    }
 }
 
 /// The limit of a face-varying channel on `mesh`, its last level (OpenSubdiv's

@@ -2,7 +2,7 @@
 //! a new point's [`Weights`] into a value, for positions and for rows of any width.
 
 use crate::mesh::HalfEdgeMesh;
-use crate::rules::{Stencil, Weights};
+use crate::rules::Weights;
 use std::borrow::Cow;
 
 /// The groups of a sink that multiplies each weight by the product of the open groups' scales
@@ -533,6 +533,10 @@ impl Rows<'_> {
     }
 }
 
+/// One vertex's three limit masks merged per vertex of the level: each weighted vertex once,
+/// with its position's, first tangent's and second tangent's weights.
+pub type LimitSources = Vec<(u32, [f32; 3])>;
+
 /// One level's values of one kind (positions, or [`Rows`]), as the hosts refine them: the same
 /// loop over new points serves every kind. A host asks for a sum over the parent values (and
 /// the child level's face points, where its rules weight them), then appends or places each new
@@ -587,22 +591,29 @@ pub trait Primvar: Sized {
         None
     }
     /// The values of three masks per vertex of `mesh` (the limit position and two tangents),
-    /// which `masks(v, recorded)` records into three cleared [`Stencil`]s: the position rows,
-    /// and the two tangent rows. A kind whose three sums share their work overrides this.
+    /// which `masks(v, sources)` gives merged per vertex of the level (each weighted vertex
+    /// once, with its three weights): the position rows, and the two tangent rows. A kind whose
+    /// three sums share their work overrides this.
     fn limit_rows(
         &self,
         mesh: &HalfEdgeMesh,
-        masks: &mut dyn FnMut(u32, &mut [Stencil; 3]),
+        masks: &mut dyn FnMut(u32, &mut LimitSources),
     ) -> (Self, [Self; 2]) {
         let n = mesh.num_vertices();
         let mut out = [self.with_capacity(n), self.with_capacity(n), self.with_capacity(n)];
         let mut sum = self.sum(&mesh.he_from, None);
-        let mut recorded: [Stencil; 3] = Default::default();
+        let mut sources = Vec::new();
         for v in 0..n as u32 {
-            recorded.iter_mut().for_each(|s| s.sources.clear());
-            masks(v, &mut recorded);
-            for (rows, mask) in out.iter_mut().zip(&recorded) {
-                rows.push(&mut sum, |w| mask.replay(w));
+            sources.clear();
+            masks(v, &mut sources);
+            for (k, rows) in out.iter_mut().enumerate() {
+                rows.push(&mut sum, |w| {
+                    for &(source, weights) in &sources {
+                        if weights[k] != 0.0 {
+                            w.vertex(source, weights[k]);
+                        }
+                    }
+                });
             }
         }
         let [positions, first, second] = out;

@@ -5,8 +5,8 @@
 use super::StencilTable;
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
-use crate::primvar::Primvar;
-use crate::rules::{Source, Stencil, Weights};
+use crate::primvar::{LimitSources, Primvar};
+use crate::rules::Weights;
 
 /// The stencils of one level's vertices while the levels run: for vertex `i`, the control
 /// vertices `indices[s..s + n]` and their `weights`, where `[s, n] = spans[i]`. Rows are
@@ -335,14 +335,14 @@ impl Primvar for Stencils {
         self.overflowed
     }
 
-    /// The three rows of a vertex in one pass: the masks are merged per parent vertex first, so
+    /// The three rows of a vertex in one pass: the masks come merged per parent vertex, so
     /// that each parent row is read once and feeds three sums; the rows share their control
     /// vertices (a weight is kept as 0 where one mask does not reach a vertex the others do),
     /// which [`StencilTable::with_tangents`] then takes as they are.
     fn limit_rows(
         &self,
         mesh: &HalfEdgeMesh,
-        masks: &mut dyn FnMut(u32, &mut [Stencil; 3]),
+        masks: &mut dyn FnMut(u32, &mut LimitSources),
     ) -> (Self, [Self; 2]) {
         let n = mesh.num_vertices();
         // The tangent rows share the position rows' entries: they keep weights only (see
@@ -356,20 +356,17 @@ impl Primvar for Stencils {
         };
         let mut out = [weights_only(), weights_only(), positions];
         out.rotate_right(1);
-        let mut recorded: [Stencil; 3] = Default::default();
+        let mut sources = Vec::with_capacity(32);
         let mut sum = LimitSum {
-            sources: Vec::with_capacity(32),
-            listed: vec![(0, 0); n],
             sums: vec![Slot::default(); self.num_control],
             touched: vec![0; self.num_control],
             stamp: 0,
         };
         for v in 0..n as u32 {
-            recorded.iter_mut().for_each(|s| s.sources.clear());
-            masks(v, &mut recorded);
+            sources.clear();
+            masks(v, &mut sources);
             sum.next_row();
-            sum.merge(mesh, &recorded);
-            let count = sum.gather(self);
+            let count = sum.gather(self, &sources);
             let touched = &sum.touched[..count];
             let [a, b, c] = &mut out;
             let start = a.indices.len();
@@ -387,14 +384,10 @@ impl Primvar for Stencils {
     }
 }
 
-/// The composition of [`Primvar::limit_rows`]: one vertex's three masks (limit position, two
-/// tangents) merged per source vertex of the level, then the sources' rows gathered into three
-/// sums per control vertex at once.
+/// The composition of [`Primvar::limit_rows`]: the rows of the level's vertices that one
+/// vertex's three masks weight (merged per vertex) gathered into three sums per control vertex
+/// at once.
 struct LimitSum {
-    /// The level's vertices the masks weight, with the three masks' weights of each.
-    sources: Vec<(u32, [f32; 3])>,
-    /// Per level vertex, the stamp of the row that last listed it in `sources`, and where.
-    listed: Vec<(u32, u32)>,
     /// Per control vertex, the row's sums and stamp.
     sums: Vec<Slot>,
     /// The row's control vertices, `touched[..count]`: one slot per control vertex, as in
@@ -408,45 +401,20 @@ impl LimitSum {
     fn next_row(&mut self) {
         if self.stamp == u32::MAX {
             self.sums.iter_mut().for_each(|s| *s = Slot::default());
-            self.listed.iter_mut().for_each(|l| l.0 = 0);
             self.stamp = 0;
         }
         self.stamp += 1;
-        self.sources.clear();
     }
 
-    /// Lists the level vertices `masks` weight in `sources`, each once with its three weights.
-    fn merge(&mut self, mesh: &HalfEdgeMesh, masks: &[Stencil; 3]) {
-        let stamp = self.stamp;
-        for (k, mask) in masks.iter().enumerate() {
-            for &(source, weight) in &mask.sources {
-                let parent = match source {
-                    Source::Vertex(p) => p,
-                    Source::Corner(h) => mesh.he_from[h as usize],
-                    // Limit masks weight no face point.
-                    Source::FacePoint(_) => continue,
-                };
-                let entry = &mut self.listed[parent as usize];
-                if entry.0 == stamp {
-                    self.sources[entry.1 as usize].1[k] += weight;
-                } else {
-                    *entry = (stamp, self.sources.len() as u32);
-                    let mut w = [0.0; 3];
-                    w[k] = weight;
-                    self.sources.push((parent, w));
-                }
-            }
-        }
-    }
-
-    /// Adds up the rows of `level` that `sources` name, weighted; returns how many control
-    /// vertices the row has (`touched[..count]`, in the order first reached, as `append_row`).
-    fn gather(&mut self, level: &Stencils) -> usize {
+    /// Adds up the rows of `level` that `sources` name, with their three weights; returns how
+    /// many control vertices the row has (`touched[..count]`, in the order first reached, as
+    /// `append_row`).
+    fn gather(&mut self, level: &Stencils, sources: &[(u32, [f32; 3])]) -> usize {
         let stamp = self.stamp;
         let sums = &mut self.sums[..];
         let touched = &mut self.touched[..];
         let mut count = 0;
-        for &(parent, w) in &self.sources {
+        for &(parent, w) in sources {
             let (controls, weights) = level.row(parent as usize);
             let w = Slot::masks(w);
             for (&c, &cw) in controls.iter().zip(weights) {
