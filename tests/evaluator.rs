@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::diagonal;
+use common::{diagonal, OTHER_SPAN};
 use subsurf::attributes::Attribute;
 use subsurf::io::obj::read_obj_with_tags;
 use subsurf::scheme::subdivide_refined_with;
@@ -210,27 +210,11 @@ fn bad_input_is_refused_and_the_outputs_stay() {
 /// 2e-3 rad (the two sum the tangents in different orders in f32: `catmark_bishop`'s small
 /// faces cost 1.2e-3 rad, as against OpenSubdiv in `tests/osd_limit_agreement.rs`) wherever
 /// `subdivide`'s tangents are more than 1e-3 rad from parallel, except on the shapes whose
-/// normals come from either of two spans of faces (`AMBIGUOUS`). The table's rows reuse one smooth vertex's
+/// normals may come from another span of faces (`common::OTHER_SPAN`; on
+/// `catmark_val2_back2back` the table's rows, merged per vertex, cancel the tangent weights that
+/// `subdivide`'s sums keep). The table's rows reuse one smooth vertex's
 /// masks for every smooth vertex of its valence (`limit::MaskMerge`) and must fall back to a
 /// vertex's own masks where its neighbourhood names a vertex twice.
-/// Shapes with vertices whose faces have no first one (Catmull-Clark's interior vertex of two
-/// faces, non-manifold vertices: `OTHER_SPAN` of `tests/osd_limit_agreement.rs`), where the
-/// table's rows (merged per vertex) and `subdivide`'s sums may take a normal of another span,
-/// or none where the merged tangent weights cancel: their positions are compared, not their
-/// normals.
-const AMBIGUOUS: &[&str] = &[
-    "catmark_val2_back2back",
-    "catmark_fan",
-    "catmark_gregory_test4",
-    "catmark_nonman_edges",
-    "catmark_nonman_verts",
-    "catmark_val2_nonman",
-    "loop_nonman_edge100",
-    "loop_nonman_edges",
-    "loop_nonman_verts",
-    "loop_val2_interior",
-];
-
 #[test]
 fn limit_tables_equal_subdivide_on_every_shape() {
     let root = env!("CARGO_MANIFEST_DIR");
@@ -281,7 +265,7 @@ fn limit_tables_equal_subdivide_on_every_shape() {
                     if length(&cross) <= 1e-3 * length(t1) * length(t2) {
                         continue;
                     }
-                    if AMBIGUOUS.contains(&name.as_str()) {
+                    if OTHER_SPAN.contains(&name.as_str()) {
                         continue;
                     }
                     let dot: f32 = (0..3).map(|k| a[k] * b[k]).sum();

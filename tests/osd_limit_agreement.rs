@@ -13,8 +13,11 @@
 //! `OSD_FIXTURE_FILTER=catmark_cube` runs only matching fixtures; `-- --nocapture` prints the
 //! counts.
 
+mod common;
 #[path = "common/osd.rs"]
 mod osd;
+
+use common::OTHER_SPAN;
 
 use osd::{
     bounding_diagonal, face_pairs, our_scheme, ours, read_fixture, read_manifest, root, vertex_map,
@@ -31,26 +34,6 @@ use subsurf::{Boundary, FVarLinear, Options, PolyMesh, Tags};
 /// (the bishop's small faces) the cancellation costs up to 1e-3 rad (OpenSubdiv sums doubles);
 /// almost every normal agrees within 1e-4.
 const MAX_ANGLE: f64 = 2e-3;
-
-/// Shapes whose normals at some vertices come from another span of faces than OpenSubdiv's:
-/// where a vertex's faces have no canonical first one and our driver does not track
-/// OpenSubdiv's (Catmull-Clark's interior vertex of two faces in `catmark_val2_back2back`), and
-/// at non-manifold vertices, whose edges OpenSubdiv lists in its own order (every shape of
-/// `tests/meshes/osd_nonmanifold/`). On these shapes the normals that differ are counted, not
-/// required to agree (positions are). Loop's interior creases and corners agree: the driver
-/// follows OpenSubdiv's first face through triangle splits (`subsurf::limit::FirstFaces`).
-const OTHER_SPAN: &[&str] = &[
-    "catmark_val2_back2back",
-    "catmark_fan",
-    "catmark_gregory_test4",
-    "catmark_nonman_edges",
-    "catmark_nonman_verts",
-    "catmark_val2_nonman",
-    "loop_nonman_edge100",
-    "loop_nonman_edges",
-    "loop_nonman_verts",
-    "loop_val2_interior",
-];
 
 fn dir() -> PathBuf {
     root().join("tests/fixtures/osd_limit")
