@@ -124,6 +124,10 @@ pub fn evaluate<V: Primvar>(
     (frame, out_rows, tangents)
 }
 
+/// Merged masks by slot of a neighbourhood: 0 the vertex, `1..=E` its edges' ends, then its
+/// faces' opposite corners.
+type SlotMasks = Vec<(usize, [f32; 3])>;
+
 /// One vertex's three limit masks (position, two tangents) merged per vertex of the level, for
 /// the rows of a stencil table: each weighted vertex once, in the order the masks first name it
 /// (the position's mask first), with its three weights.
@@ -133,10 +137,6 @@ pub fn evaluate<V: Primvar>(
 /// faces' opposite corners) and reused: the masks and their merge were a fifth of a limit
 /// table's build, for a million vertices of a few valences. A vertex whose slots name some
 /// vertex twice (a degenerate face or edge) is merged from its masks, as every other rule is.
-/// Merged masks by slot of a neighbourhood: 0 the vertex, `1..=E` its edges' ends, then its
-/// faces' opposite corners.
-type SlotMasks = Vec<(usize, [f32; 3])>;
-
 struct MaskMerge {
     recorded: [Stencil; 3],
     /// Per level vertex, the stamp of the vertex that last listed it, and where.
