@@ -7,8 +7,7 @@ use crate::fvar::{tag, FVarLevel};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::primvar::{FVarSum, LimitSources, PointSum, Primvar, RowSum};
 use crate::rules::limit::{LimitRule, LimitRules, Neighbourhood};
-use crate::rules::Source;
-use crate::rules::Stencil;
+use crate::rules::{Source, Stencil};
 use glam::DVec3;
 
 /// The limit positions, tangents and normals of one level's vertices, three floats each.
@@ -214,14 +213,9 @@ impl MaskMerge {
                     Source::FacePoint(_) => continue,
                 };
                 let entry = &mut self.listed[vertex as usize];
-                if entry.0 == stamp {
-                    sources[entry.1 as usize].1[k] += weight;
-                } else {
-                    *entry = (stamp, sources.len() as u32);
-                    let mut w = [0.0; 3];
-                    w[k] = weight;
-                    sources.push((vertex, w));
-                }
+                let at = (entry.0 == stamp).then_some(entry.1 as usize);
+                *entry = (stamp, at.unwrap_or(sources.len()) as u32);
+                add_weight(sources, at, vertex, k, weight);
             }
         }
     }
@@ -248,17 +242,24 @@ impl MaskMerge {
         for (k, mask) in self.recorded.iter().enumerate() {
             for &(source, weight) in &mask.sources {
                 let Some(slot) = slot_of(source) else { return };
-                match template.iter_mut().find(|t| t.0 == slot) {
-                    Some(t) => t.1[k] += weight,
-                    None => {
-                        let mut w = [0.0; 3];
-                        w[k] = weight;
-                        template.push((slot, w));
-                    }
-                }
+                let at = template.iter().position(|t| t.0 == slot);
+                add_weight(&mut template, at, slot, k, weight);
             }
         }
         kept[n] = Some(template);
+    }
+}
+
+/// Adds mask `k`'s `weight` on `key` to `list`: to its entry at `at`, or as a new entry (the
+/// other masks' weights 0), so that entries stay in the order first named.
+fn add_weight<K>(list: &mut Vec<(K, [f32; 3])>, at: Option<usize>, key: K, k: usize, weight: f32) {
+    match at.and_then(|at| list.get_mut(at)) {
+        Some(entry) => entry.1[k] += weight,
+        None => {
+            let mut w = [0.0; 3];
+            w[k] = weight;
+            list.push((key, w));
+        }
     }
 }
 
