@@ -278,6 +278,96 @@ pub(crate) fn build_stencils(
     tags: &Tags,
     made_elsewhere: Option<MadeElsewhere<'_>>,
 ) -> Result<StencilBuild> {
+    if made_elsewhere.is_none() {
+        if let Some(order) = VertexOrder::for_build(base, attributes, options, tags) {
+            // An error is made again in the caller's numbering, so that it names their vertices.
+            let build =
+                build_stencils_in(&order.mesh, attributes, options, tags, None, Some(&order));
+            if let Ok(build) = build {
+                return Ok(build);
+            }
+        }
+    }
+    build_stencils_in(base, attributes, options, tags, made_elsewhere, None)
+}
+
+/// The base mesh of a stencil build with its vertices renamed in the order its faces first name
+/// them, when the caller's order scatters them. The build reads the rows of a face's corners
+/// together, in the faces' order; in the horse's order (a scan: 23 % of the steps from one face
+/// corner to the next jump over more than 1024 vertices, 0.1 % in this order) the level-2
+/// Catmull-Clark build took about 25 % longer, waiting on memory. Only for schemes whose hosts
+/// number a level's vertex children first, in the parent's vertex order (the quad and triangle
+/// splits), so that just the first rows of the result, the base vertices' descendants, come
+/// out renamed; and only without face-varying channels and vertex tags, which name vertices.
+struct VertexOrder {
+    /// The base mesh, vertex `v` of the caller's named `labels[v]`.
+    mesh: HalfEdgeMesh,
+    /// The caller's vertex of each new name.
+    controls: Vec<u32>,
+}
+
+impl VertexOrder {
+    /// Steps between consecutive face corners longer than this many vertices count as jumps.
+    const NEAR: u32 = 1024;
+
+    fn for_build(
+        base: &HalfEdgeMesh,
+        attributes: &[Attribute],
+        options: &Options,
+        tags: &Tags,
+    ) -> Option<Self> {
+        let splits_only = options.schemes.iter().all(|s| {
+            matches!(s, Scheme::CatmullClark | Scheme::Loop | Scheme::Bilinear | Scheme::Midpoint)
+        });
+        let vertex_tags = !tags.creases.is_empty() || !tags.corners.is_empty();
+        if options.schemes.is_empty()
+            || !splits_only
+            || vertex_tags
+            || attributes.iter().any(Attribute::is_face_varying)
+            || base.num_vertices() <= Self::NEAR as usize
+        {
+            return None;
+        }
+        let n = base.num_vertices();
+        let mut labels = vec![u32::MAX; n];
+        let mut controls = Vec::with_capacity(n);
+        for &v in &base.he_from {
+            if let Some(label) = labels.get_mut(v as usize).filter(|l| **l == u32::MAX) {
+                *label = controls.len() as u32;
+                controls.push(v);
+            }
+        }
+        for (v, label) in labels.iter_mut().enumerate() {
+            if *label == u32::MAX {
+                *label = controls.len() as u32;
+                controls.push(v as u32);
+            }
+        }
+        let (mut scattered, mut ordered) = (0, 0);
+        let mut last = [0u32; 2];
+        for &v in &base.he_from {
+            let label = labels.get(v as usize).copied().unwrap_or(v);
+            scattered += usize::from(v.abs_diff(last[0]) > Self::NEAR);
+            ordered += usize::from(label.abs_diff(last[1]) > Self::NEAR);
+            last = [v, label];
+        }
+        // Worth a second mesh only where the caller's order jumps often and this one rarely.
+        if scattered <= 4 * ordered + base.num_half_edges() / 50 {
+            return None;
+        }
+        Some(VertexOrder { mesh: base.relabelled(&labels, &controls), controls })
+    }
+}
+
+/// [`build_stencils`] on `base`, which is the caller's mesh renamed by `order` when there is one.
+fn build_stencils_in(
+    base: &HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    made_elsewhere: Option<MadeElsewhere<'_>>,
+    order: Option<&VertexOrder>,
+) -> Result<StencilBuild> {
     check_attributes(attributes, base)?;
     check_guards(base, options)?;
     let levels = options.levels();
@@ -301,7 +391,11 @@ pub(crate) fn build_stencils(
         Cow::Borrowed(base),
         options,
         tags,
-        Stencils::identity(num_control, limit),
+        match order {
+            // The rows name the caller's control vertices from the start.
+            Some(order) => Stencils::named(&order.controls, limit),
+            None => Stencils::identity(num_control, limit),
+        },
         fvar,
         |last, fvar| {
             stencils = Some(last);
@@ -340,6 +434,17 @@ pub(crate) fn build_stencils(
             table.num_stencils(),
             mesh.num_vertices()
         )));
+    }
+    if let Some(order) = order {
+        // The first rows, and the faces' corners among them, are the base vertices'
+        // descendants in the order of their new names.
+        table.reorder_first(&order.controls);
+        let controls = &order.controls[..];
+        for c in &mut mesh.indices {
+            if (*c as usize) < controls.len() {
+                *c = controls[*c as usize];
+            }
+        }
     }
     // The levels left no positions worth keeping (see `StencilBuild::mesh`).
     mesh.positions = Vec::new();

@@ -11,8 +11,8 @@ use glam::Vec3;
 use subsurf::attributes::Attribute;
 use subsurf::io::obj::read_obj_with_tags;
 use subsurf::scheme::subdivide_refined_with;
-use subsurf::shapes::{cube, grid_with_hole, icosahedron, torus};
-use subsurf::{Error, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
+use subsurf::shapes::{cube, grid_with_hole, icosahedron, torus, torus_triangles};
+use subsurf::{Error, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme, StencilTable, Tags};
 
 /// A deterministic deformation of `positions`: a twist about y and a wave.
 fn deform(positions: &[f32], t: f32) -> Vec<f32> {
@@ -272,4 +272,108 @@ fn limit_tables_equal_subdivide_on_every_shape() {
     }
     assert!(cases > 150 && normals > 50_000, "only {cases} cases, {normals} normals");
     println!("{cases} cases, {normals} normals compared");
+}
+
+/// `mesh` with its vertices numbered in the order its faces first name them.
+fn in_first_use_order(mesh: &PolyMesh) -> PolyMesh {
+    let mut rename = vec![u32::MAX; mesh.positions.len() / 3];
+    let mut order = Vec::new();
+    for &v in &mesh.indices {
+        if rename[v as usize] == u32::MAX {
+            rename[v as usize] = order.len() as u32;
+            order.push(v as usize);
+        }
+    }
+    let positions = order.iter().flat_map(|&v| mesh.positions[3 * v..3 * v + 3].to_vec()).collect();
+    let indices = mesh.indices.iter().map(|&v| rename[v as usize]).collect();
+    PolyMesh { positions, indices, face_sizes: mesh.face_sizes.clone() }
+}
+
+/// `mesh` with vertex `v` renamed `shuffle[v]`.
+fn renamed(mesh: &PolyMesh, shuffle: &[u32]) -> PolyMesh {
+    let mut positions = vec![0.0; mesh.positions.len()];
+    for (v, p) in mesh.positions.chunks_exact(3).enumerate() {
+        let to = 3 * shuffle[v] as usize;
+        positions[to..to + 3].copy_from_slice(p);
+    }
+    let indices = mesh.indices.iter().map(|&v| shuffle[v as usize]).collect();
+    PolyMesh { positions, indices, face_sizes: mesh.face_sizes.clone() }
+}
+
+/// A stencil build renames the base vertices in the order the faces first name them when the
+/// caller's order scatters them (a speed-up: the rows it reads together then lie together), and
+/// must not show it. A torus in its faces' first-use order, and the same torus with its
+/// vertices shuffled (a Fisher-Yates shuffle by a fixed linear congruential generator): the
+/// second's table is the first's, bit for bit, with every control index, the base vertices'
+/// own rows (which come first) and the faces' corners among them renamed by the shuffle; and
+/// its frames equal `subdivide`'s on the shuffled mesh.
+#[test]
+fn a_scattered_vertex_order_gives_the_same_table_renamed() {
+    let quads = in_first_use_order(&torus(48, 40, 1.0, 0.3));
+    let triangles = in_first_use_order(&torus_triangles(48, 40, 1.0, 0.3));
+    let n = quads.positions.len() / 3;
+    let mut shuffle: Vec<u32> = (0..n as u32).collect();
+    let mut state = 12345u64;
+    for i in (1..n).rev() {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        shuffle.swap(i, (state >> 33) as usize % (i + 1));
+    }
+    let mut unshuffle = vec![0; n];
+    for (v, &s) in shuffle.iter().enumerate() {
+        unshuffle[s as usize] = v;
+    }
+    let holes = Tags { holes: vec![5, 700, 1201], ..Tags::default() };
+    let color: Vec<f32> = (0..3 * n).map(|i| (i % 11) as f32 / 11.0).collect();
+    let color = [Attribute::vertex("color", 3, color)];
+    let cases: [(&PolyMesh, Scheme, bool, &Tags, &[Attribute]); 6] = [
+        (&quads, Scheme::CatmullClark, false, &Tags::default(), &color),
+        (&quads, Scheme::CatmullClark, true, &holes, &[]),
+        (&triangles, Scheme::Loop, false, &holes, &color),
+        (&triangles, Scheme::Loop, true, &Tags::default(), &[]),
+        (&quads, Scheme::Bilinear, false, &Tags::default(), &[]),
+        (&triangles, Scheme::Midpoint, false, &Tags::default(), &[]),
+    ];
+    for (mesh, scheme, limit, tags, attributes) in cases {
+        let options = options(scheme, 2, limit, limit);
+        let what = format!("{scheme} limit {limit} holes {}", tags.holes.len());
+        let shuffled = renamed(mesh, &shuffle);
+        let build = |mesh: &PolyMesh| {
+            let base = HalfEdgeMesh::from_poly(mesh).unwrap();
+            Evaluator::new(&base, attributes, &options, tags).unwrap()
+        };
+        let (ordered, scattered) = (build(mesh), build(&shuffled));
+        let (a, b) = (ordered.table(), scattered.table());
+        assert_eq!(a.num_stencils(), b.num_stencils(), "{what}");
+        let source = |row: usize| if row < n { unshuffle[row] } else { row };
+        let rows =
+            |t: &StencilTable, r: usize| t.offsets()[r] as usize..t.offsets()[r + 1] as usize;
+        for row in 0..b.num_stencils() {
+            let (want, got) = (rows(a, source(row)), rows(b, row));
+            let want_indices: Vec<u32> =
+                a.indices()[want.clone()].iter().map(|&c| shuffle[c as usize]).collect();
+            assert_eq!(b.indices()[got.clone()], want_indices[..], "{what}: row {row}");
+            let bits = |w: &[f32]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&b.weights()[got.clone()]),
+                bits(&a.weights()[want.clone()]),
+                "{what}: row {row}"
+            );
+            if let (Some(ta), Some(tb)) = (a.tangent_weights(), b.tangent_weights()) {
+                for k in 0..2 {
+                    assert_eq!(
+                        bits(&tb[k][got.clone()]),
+                        bits(&ta[k][want.clone()]),
+                        "{what}: row {row}"
+                    );
+                }
+            }
+        }
+        let corners: Vec<u32> = ordered
+            .indices()
+            .iter()
+            .map(|&c| if (c as usize) < n { shuffle[c as usize] } else { c })
+            .collect();
+        assert_eq!(scattered.indices(), corners, "{what}: faces");
+        check(&shuffled, attributes, &options, tags, &what);
+    }
 }

@@ -436,6 +436,42 @@ impl HalfEdgeMesh {
         visited == out.len()
     }
 
+    /// This mesh with vertex `v` renamed `labels[v]`, where `controls` lists the vertex of each
+    /// label (the two are inverse permutations). Cells, half-edges and edges keep their numbers
+    /// and every list its order, so that a walk of the relabelled mesh meets the same elements
+    /// in the same order as a walk of this one, only under the vertices' new names.
+    pub(crate) fn relabelled(&self, labels: &[u32], controls: &[u32]) -> HalfEdgeMesh {
+        let name = |v: u32| labels.get(v as usize).copied().unwrap_or(v);
+        let mut vertex_offsets = Vec::with_capacity(controls.len() + 1);
+        let mut vertex_half_edges = Vec::with_capacity(self.vertex_half_edges.len());
+        vertex_offsets.push(0);
+        for &v in controls {
+            if (v as usize) < self.num_vertices() {
+                vertex_half_edges.extend_from_slice(self.out_half_edges(v));
+            }
+            vertex_offsets.push(vertex_half_edges.len() as u32);
+        }
+        let positions = controls.iter().map(|&v| self.positions.get(v as usize).copied());
+        HalfEdgeMesh {
+            positions: positions.map(|p| p.unwrap_or_default()).collect(),
+            cell_offsets: self.cell_offsets.clone(),
+            he_from: self.he_from.iter().map(|&v| name(v)).collect(),
+            he_cell: self.he_cell.clone(),
+            he_edge: self.he_edge.clone(),
+            he_next_around_edge: self.he_next_around_edge.clone(),
+            edge_vertices: self.edge_vertices.iter().map(|&[a, b]| [name(a), name(b)]).collect(),
+            edge_offsets: self.edge_offsets.clone(),
+            edge_half_edges: self.edge_half_edges.clone(),
+            vertex_offsets,
+            vertex_half_edges,
+            non_manifold_edges: self.non_manifold_edges,
+            multi_fan_vertices: self.multi_fan_vertices,
+            marked_non_manifold: self.marked_non_manifold.clone(),
+            repeated_corners: self.repeated_corners,
+            cell_size: self.cell_size,
+        }
+    }
+
     // Index arithmetic shared by the handles and the refinement hosts.
 
     #[inline]

@@ -42,13 +42,20 @@ impl Stencils {
     /// The control vertices themselves: vertex `i` is control vertex `i` with weight 1. At most
     /// `limit` entries per level (see [`Stencils`]).
     pub(crate) fn identity(count: usize, limit: usize) -> Self {
+        Self::named(&(0..count as u32).collect::<Vec<_>>(), limit)
+    }
+
+    /// The control vertices of a base mesh whose vertex `i` is control vertex `controls[i]`
+    /// (a permutation), with weight 1: rows made from these name the control vertices.
+    pub(crate) fn named(controls: &[u32], limit: usize) -> Self {
+        let count = controls.len();
         let limit = limit.min(u32::MAX as usize);
         if count > limit {
             return Stencils { num_control: count, limit, overflowed: true, ..Stencils::default() };
         }
         Stencils {
             spans: (0..count as u32).map(|i| [i, 1]).collect(),
-            indices: (0..count as u32).collect(),
+            indices: controls.to_vec(),
             weights: vec![1.0; count],
             num_control: count,
             limit,

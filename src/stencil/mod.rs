@@ -45,6 +45,42 @@ pub struct StencilTable {
 }
 
 impl StencilTable {
+    /// Moves row `l` of the first `order.len()` rows to row `order[l]` (`order` a permutation of
+    /// those rows); the rows after them stay where they are.
+    pub(crate) fn reorder_first(&mut self, order: &[u32]) {
+        let n = order.len().min(self.num_stencils());
+        let mut from = vec![0u32; n];
+        for (l, &p) in order.iter().enumerate().take(n) {
+            if let Some(f) = from.get_mut(p as usize) {
+                *f = l as u32;
+            }
+        }
+        let end = self.offsets[n] as usize;
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0u32);
+        let mut indices = Vec::with_capacity(end);
+        let tangents = if self.tangent_weights.is_some() { end } else { 0 };
+        let mut weights =
+            [Vec::with_capacity(end), Vec::with_capacity(tangents), Vec::with_capacity(tangents)];
+        for &l in &from {
+            let range = self.offsets[l as usize] as usize..self.offsets[l as usize + 1] as usize;
+            indices.extend_from_slice(&self.indices[range.clone()]);
+            weights[0].extend_from_slice(&self.weights[range.clone()]);
+            if let Some(tangents) = &self.tangent_weights {
+                weights[1].extend_from_slice(&tangents[0][range.clone()]);
+                weights[2].extend_from_slice(&tangents[1][range]);
+            }
+            offsets.push(indices.len() as u32);
+        }
+        self.offsets[..=n].copy_from_slice(&offsets);
+        self.indices[..end].copy_from_slice(&indices);
+        self.weights[..end].copy_from_slice(&weights[0]);
+        if let Some(tangents) = &mut self.tangent_weights {
+            tangents[0][..end].copy_from_slice(&weights[1]);
+            tangents[1][..end].copy_from_slice(&weights[2]);
+        }
+    }
+
     /// Number of stencils: output vertices.
     pub fn num_stencils(&self) -> usize {
         self.offsets.len() - 1
