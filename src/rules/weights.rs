@@ -17,6 +17,10 @@ pub trait Weights {
     /// The face point of parent cell `c`: a point of the child level, which the host computes
     /// before any point that weights it.
     fn face_point(&mut self, c: u32, weight: f32);
+    /// True for a sink to which a face point costs more than its cell's corners: a stencil's
+    /// face point is a composed row, longer than a parent's. A rule that can weight the corners
+    /// instead (Catmull-Clark's vertex rule among quads) then does.
+    const FACE_POINTS_COST_MORE: bool = false;
     /// What a sink keeps while a group is open (the sum so far, or the scale outside it).
     type Group;
     /// Opens a group: everything added until [`Weights::end_group`] counts `scale` times. A rule
@@ -47,6 +51,8 @@ pub struct Scaled<'a, W: Weights> {
 }
 
 impl<W: Weights> Weights for Scaled<'_, W> {
+    const FACE_POINTS_COST_MORE: bool = W::FACE_POINTS_COST_MORE;
+
     #[inline(always)]
     fn vertex(&mut self, v: u32, weight: f32) {
         self.inner.vertex(v, weight * self.scale);

@@ -249,6 +249,8 @@ impl StencilSum<'_> {
 }
 
 impl Weights for StencilSum<'_> {
+    const FACE_POINTS_COST_MORE: bool = true;
+
     #[inline]
     fn vertex(&mut self, v: u32, weight: f32) {
         self.gather(self.parent, v as usize, weight);
