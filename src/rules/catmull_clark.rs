@@ -86,7 +86,7 @@ fn face_points_cost_more<W: Weights>(_: &W) -> bool {
 /// face point `(v + e_i + d_i + e_(i+1)) / 4` expanded, `(4n - 7)/(4n) · v + 3/(2n²) · Σ e_i +
 /// 1/(4n²) · Σ d_i` (Catmull and Clark's 1978 vertex rule written on a quad mesh's one-ring).
 /// The same point as [`CatmullClark`]'s rule; for sinks to which a face point costs more than
-/// its corners (a stencil build: about 11 % fewer products at the horse's level 2, and no
+/// its corners (a stencil build: 8 % fewer products at the horse's level 2, and no
 /// reads of the level's own face-point rows).
 fn quad_vertex_point(mesh: &HalfEdgeMesh, vertex: u32, n: u32, w: &mut impl Weights) {
     let n = n as f32;
