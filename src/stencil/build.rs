@@ -109,11 +109,19 @@ impl Stencils {
         // that cancelled to zero (rare) is taken out after.
         self.indices.extend_from_slice(touched);
         let mut zero = false;
-        self.weights.extend(touched.iter().map(|&c| {
-            let w = sums[c as usize].0;
+        let written = self.weights.len() + touched.len();
+        self.weights.reserve(touched.len());
+        let room = &mut self.weights.spare_capacity_mut()[..touched.len()];
+        for (to, &c) in room.iter_mut().zip(touched) {
+            debug_assert!((c as usize) < sums.len());
+            // SAFETY: a row names control vertices only (below `num_control`, the length of
+            // `sums`; see `StencilSum::gather`).
+            let w = unsafe { sums.get_unchecked(c as usize).0 };
             zero |= w == 0.0;
-            w
-        }));
+            to.write(w);
+        }
+        // SAFETY: the loop wrote the `touched.len()` floats after the old length.
+        unsafe { self.weights.set_len(written) };
         if zero {
             let mut kept = start;
             for k in start..self.weights.len() {
