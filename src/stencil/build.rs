@@ -42,12 +42,17 @@ impl Stencils {
     /// The control vertices themselves: vertex `i` is control vertex `i` with weight 1. At most
     /// `limit` entries per level (see [`Stencils`]).
     pub(crate) fn identity(count: usize, limit: usize) -> Self {
-        Self::named(&(0..count as u32).collect::<Vec<_>>(), limit)
+        Self::one_each((0..count as u32).collect(), limit)
     }
 
     /// The control vertices of a base mesh whose vertex `i` is control vertex `controls[i]`
     /// (a permutation), with weight 1: rows made from these name the control vertices.
     pub(crate) fn named(controls: &[u32], limit: usize) -> Self {
+        Self::one_each(controls.to_vec(), limit)
+    }
+
+    /// Row `i` control vertex `controls[i]` with weight 1.
+    fn one_each(controls: Vec<u32>, limit: usize) -> Self {
         let count = controls.len();
         let limit = limit.min(u32::MAX as usize);
         if count > limit {
@@ -55,7 +60,7 @@ impl Stencils {
         }
         Stencils {
             spans: (0..count as u32).map(|i| [i, 1]).collect(),
-            indices: controls.to_vec(),
+            indices: controls,
             weights: vec![1.0; count],
             num_control: count,
             limit,
