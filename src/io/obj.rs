@@ -10,13 +10,13 @@
 //! [`read_obj_with_tags`] (syntax in `DEVELOPERS.md`, section "OBJ tags"). Errors give the
 //! 1-based line number.
 
+use super::text;
 use crate::attributes::{self, Attribute};
 use crate::error::{Error, Result};
 use crate::mesh::PolyMesh;
 use crate::options::Boundary;
 use crate::tags::{Corner, Crease, CreaseMethod, Tags};
 use std::collections::HashSet;
-use std::fmt::Write as _;
 
 /// The name of the face-varying channel that holds an OBJ file's texture coordinates.
 pub const UV: &str = "uv";
@@ -558,45 +558,54 @@ pub fn write_obj_with_normals(
 }
 
 fn write(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -> String {
-    let uv_len = uv.map_or(0, |a| a.values.len() * 12);
-    let normals_len = normals.map_or(0, |n| n.len() * 12);
-    let mut out = String::with_capacity(
-        mesh.positions.len() * 12 + mesh.indices.len() * 16 + uv_len + normals_len,
-    );
+    // About 13 bytes a float and 8 an index, so that the text is rarely moved while it grows.
+    let floats =
+        mesh.positions.len() + uv.map_or(0, |a| a.values.len()) + normals.map_or(0, <[_]>::len);
+    let per_corner = 8 * (1 + usize::from(uv.is_some()) + usize::from(normals.is_some()));
+    let mut out = Vec::with_capacity(floats * 13 + mesh.indices.len() * per_corner);
+    let floats_line = |out: &mut Vec<u8>, tag: &[u8], values: &[f32]| {
+        out.extend_from_slice(tag);
+        for &x in values {
+            out.push(b' ');
+            text::push_f32(out, x);
+        }
+        out.push(b'\n');
+    };
     for p in mesh.positions.chunks_exact(3) {
-        let _ = writeln!(out, "v {} {} {}", p[0], p[1], p[2]);
+        floats_line(&mut out, b"v", p);
     }
     if let Some(uv) = uv {
         for value in uv.values.chunks_exact(uv.item_size) {
-            out.push_str("vt");
-            for x in value {
-                let _ = write!(out, " {x}");
-            }
-            out.push('\n');
+            floats_line(&mut out, b"vt", value);
         }
     }
     for n in normals.unwrap_or_default().chunks_exact(3) {
-        let _ = writeln!(out, "vn {} {} {}", n[0], n[1], n[2]);
+        floats_line(&mut out, b"vn", n);
     }
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
         let Some(face) = mesh.indices.get(start..start + n as usize) else {
             break;
         };
-        out.push('f');
+        out.push(b'f');
         for (k, &i) in face.iter().enumerate() {
             let v = i as u64 + 1;
             let t =
                 uv.map(|a| a.indices.as_ref().map_or(i, |indices| indices[start + k]) as u64 + 1);
-            let _ = match (t, normals.is_some()) {
-                (Some(t), false) => write!(out, " {v}/{t}"),
-                (Some(t), true) => write!(out, " {v}/{t}/{v}"),
-                (None, true) => write!(out, " {v}//{v}"),
-                (None, false) => write!(out, " {v}"),
-            };
+            out.push(b' ');
+            text::push_u64(&mut out, v);
+            if let Some(t) = t {
+                out.push(b'/');
+                text::push_u64(&mut out, t);
+            }
+            if normals.is_some() {
+                out.extend_from_slice(if t.is_some() { b"/" } else { b"//" });
+                text::push_u64(&mut out, v);
+            }
         }
-        out.push('\n');
+        out.push(b'\n');
         start += n as usize;
     }
-    out
+    // Every byte written is ASCII.
+    String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
