@@ -8,6 +8,15 @@ WASM_BINDGEN_VERSION=0.2.130   # must equal the wasm-bindgen pin in Cargo.toml
 
 step() { printf '\n== setup: %s\n' "$*"; }
 
+# A first run (toolchain, npm packages, the native and wasm builds, the test projects) fills
+# about 4 GB in this folder; when the disk is nearly full, every later step fails with ENOSPC
+# somewhere inside npm or cargo, so say it here, plainly.
+FREE_KB=$(df -Pk . | awk 'NR == 2 {print $4}')
+if [ -n "$FREE_KB" ] && [ "$FREE_KB" -lt $((5 * 1024 * 1024)) ]; then
+  echo "setup: only $((FREE_KB / 1024)) MB free on the disk of $(pwd); building and testing subsurf needs about 5 GB. Free some space (old clones, target/ folders) and run again" >&2
+  exit 1
+fi
+
 if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
   step "rustup target add wasm32-unknown-unknown"
   rustup target add wasm32-unknown-unknown
