@@ -4,7 +4,8 @@
 #   scripts/test.sh
 #
 # Steps: setup (installs what is missing), cargo fmt --check, cargo clippy, the API docs (cargo
-# doc, natively and for wasm32, warnings as errors: a broken link fails), native cargo test,
+# doc, natively and for wasm32, warnings as errors: a broken link fails), native cargo test
+# (profile test-release: release without LTO, see Cargo.toml),
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
 # the built package, the package as users install it (consumers: npm pack, installed from the
 # tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
@@ -104,7 +105,7 @@ run docs env RUSTDOCFLAGS='-D warnings' sh -c \
   'cargo doc --no-deps && cargo doc --no-deps --target wasm32-unknown-unknown'
 # Written by the native test native_vs_wasm_fixture; removed first so a stale one never passes.
 rm -f artifacts/native-vs-wasm.json
-run native-tests cargo test --release
+run native-tests cargo test --profile test-release
 if run wasm-tests cargo test --target wasm32-unknown-unknown; then
   run wasm-counts check_wasm_counts
 else
