@@ -168,7 +168,7 @@ fn read(text: &str, options: ObjReadOptions) -> Result<ObjMesh> {
     let mut uv = UvReader::default();
     for (number, raw) in text.lines().enumerate() {
         let line_no = number + 1;
-        let line = raw.split('#').next().unwrap_or("").trim();
+        let line = before(raw, b'#').trim();
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => {
@@ -468,9 +468,19 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
     Ok(value)
 }
 
+/// `text` up to the first `byte` (an ASCII character), or all of it: a byte search, as `split`
+/// with a `char` pattern took an eighth of the time of reading a large file.
+fn before(text: &str, byte: u8) -> &str {
+    match text.bytes().position(|b| b == byte) {
+        // An ASCII byte is always a character boundary.
+        Some(end) => text.get(..end).unwrap_or(text),
+        None => text,
+    }
+}
+
 /// The 0-based position index of a face corner such as `7`, `7/2`, `7//3`, `-1/2/3`.
 fn parse_face_index(word: &str, vertex_count: usize, line: usize) -> Result<u32> {
-    let first = word.split('/').next().unwrap_or("");
+    let first = before(word, b'/');
     resolve_index(first, word, vertex_count, line, "vertex", "vertex")
 }
 
@@ -484,15 +494,16 @@ fn resolve_index(
     what: &str,
     line_kind: &str,
 ) -> Result<u32> {
+    // Named only for a message: this runs for every face corner of a file.
     let index_name =
-        if what == "vertex" { "face index".to_string() } else { format!("{what} index") };
+        || if what == "vertex" { "face index".to_string() } else { format!("{what} index") };
     let value: i64 =
         text.parse().map_err(|_| obj_error(line, format!("'{word}' is not a face index")))?;
     let resolved = match value {
         0 => {
             return Err(obj_error(
                 line,
-                format!("{index_name} 0 is not allowed; OBJ indices start at 1"),
+                format!("{} 0 is not allowed; OBJ indices start at 1", index_name()),
             ))
         }
         v if v > 0 => v - 1,
@@ -511,7 +522,7 @@ fn resolve_index(
     u32::try_from(resolved)
         .ok()
         .filter(|&i| i < u32::MAX)
-        .ok_or_else(|| obj_error(line, format!("{index_name} {value} is too large")))
+        .ok_or_else(|| obj_error(line, format!("{} {value} is too large", index_name())))
 }
 
 /// Writes `v` and `f` lines (1-based indices).
