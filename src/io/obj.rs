@@ -468,8 +468,8 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
     Ok(value)
 }
 
-/// `text` up to the first `byte` (an ASCII character), or all of it: a byte search, as `split`
-/// with a `char` pattern took an eighth of the time of reading a large file.
+/// `text` up to the first `byte` (an ASCII character), or all of it: a byte search (`split` with
+/// a `char` pattern was about a tenth of the CLI's time on an 80 MB file).
 fn before(text: &str, byte: u8) -> &str {
     match text.bytes().position(|b| b == byte) {
         // An ASCII byte is always a character boundary.
