@@ -201,3 +201,46 @@ fn uv_errors_name_the_line_and_the_attribute() {
     // read_obj skips all of this, as it skips vt lines.
     assert!(read_obj(&format!("{v}vt\nf 1/1 2 3/9\n")).is_ok());
 }
+
+/// `write_obj_to` hands the text on in pieces as it is made: the pieces put together are
+/// `write_obj_with_normals`'s text, byte for byte (a torus with a seamed uv channel and normals,
+/// about 2 MB: some thirty pieces). A bad channel is refused before anything is written,
+/// and a writer's error comes back as `Error::Io` with its message.
+#[test]
+fn write_obj_to_streams_the_same_text() {
+    use subsurf::io::{write_obj_to, write_obj_with_normals};
+    use subsurf::shapes::{torus, torus_uv};
+    let mesh = torus(120, 100, 1.0, 0.25);
+    let uv = torus_uv(120, 100);
+    let normals: Vec<f32> = mesh.positions.iter().map(|x| x * 0.5).collect();
+    let whole = write_obj_with_normals(&mesh, std::slice::from_ref(&uv), Some(&normals)).unwrap();
+    assert!(whole.len() > 1 << 20, "{} bytes", whole.len());
+    let mut pieces = Vec::new();
+    write_obj_to(&mut pieces, &mesh, std::slice::from_ref(&uv), Some(&normals)).unwrap();
+    assert_eq!(String::from_utf8(pieces).unwrap(), whole);
+
+    let bad = Attribute::vertex(UV, 4, vec![0.0; mesh.positions.len() / 3 * 4]);
+    let mut nothing = Vec::new();
+    let refused = write_obj_to(&mut nothing, &mesh, &[bad], None).unwrap_err();
+    assert!(matches!(refused, Error::InvalidAttribute(_)), "{refused:?}");
+    assert!(nothing.is_empty());
+
+    /// Takes 100 KB, then fails.
+    struct Full(usize);
+    impl std::io::Write for Full {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            if self.0 + bytes.len() > 100_000 {
+                return Err(std::io::Error::other("the disk is full"));
+            }
+            self.0 += bytes.len();
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut full = Full(0);
+    let error = write_obj_to(&mut full, &mesh, &[uv], Some(&normals)).unwrap_err();
+    assert_eq!(error, Error::Io("the disk is full".into()));
+    assert!(full.0 > 0, "the first piece went through");
+}

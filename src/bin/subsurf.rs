@@ -10,7 +10,7 @@
 
 use std::process::ExitCode;
 use std::time::Instant;
-use subsurf::io::{read_obj_with, write_obj_with_normals, ObjReadOptions};
+use subsurf::io::{read_obj_with, write_obj_to, ObjReadOptions};
 use subsurf::scheme::{Boundary, Options, Scheme};
 use subsurf::{CreaseMethod, FVarLinear, HalfEdgeMesh};
 
@@ -185,18 +185,20 @@ fn run(args: Args) -> Result<(), String> {
     let refine_time = t.elapsed();
 
     let t = Instant::now();
-    let text = write_obj_with_normals(&output, &channels, normals.as_deref())
-        .map_err(|e| e.to_string())?;
+    // Written as it is made: the text of a large result is several times its arrays' size.
+    let write = |out: &mut dyn std::io::Write, to: &str| {
+        write_obj_to(out, &output, &channels, normals.as_deref()).map_err(|e| match e {
+            subsurf::Error::Io(message) => format!("cannot write to {to}: {message}"),
+            e => e.to_string(),
+        })
+    };
     match &args.output {
         Some(path) => {
-            std::fs::write(path, text).map_err(|e| format!("cannot write '{path}': {e}"))?
+            let mut file =
+                std::fs::File::create(path).map_err(|e| format!("cannot write '{path}': {e}"))?;
+            write(&mut file, &format!("'{path}'"))?
         }
-        None => {
-            use std::io::Write;
-            std::io::stdout()
-                .write_all(text.as_bytes())
-                .map_err(|e| format!("cannot write to standard output: {e}"))?;
-        }
+        None => write(&mut std::io::stdout().lock(), "standard output")?,
     }
     let write_time = t.elapsed();
     if args.stats {

@@ -527,7 +527,8 @@ fn resolve_index(
 
 /// Writes `v` and `f` lines (1-based indices).
 pub fn write_obj(mesh: &PolyMesh) -> String {
-    write(mesh, None, None)
+    // No channel and no normals: nothing to check.
+    write_obj_with_normals(mesh, &[], None).unwrap_or_default()
 }
 
 /// Writes `v` and `f` lines and, when `attributes` has a channel named [`UV`], its values as
@@ -546,6 +547,49 @@ pub fn write_obj_with_normals(
     attributes: &[Attribute],
     normals: Option<&[f32]>,
 ) -> Result<String> {
+    let uv = checked_uv(mesh, attributes, normals)?;
+    let mut out = Vec::with_capacity(text_size(mesh, uv, normals));
+    let whole: std::io::Result<()> =
+        write(mesh, uv, normals, &mut out, usize::MAX, &mut |_| Ok(()));
+    // Nothing is spilled, so nothing can fail; and every byte written is ASCII.
+    whole.map_err(|e| Error::Io(e.to_string()))?;
+    Ok(String::from_utf8(out)
+        .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
+}
+
+/// [`write_obj_with_normals`] into `out`, in pieces of about 64 KB as they are made: the text of
+/// a large mesh is never held whole (the horse at Catmull-Clark level 2 with normals is 160 MB
+/// of it). The mesh, the `uv` channel and the normals are checked before anything is written;
+/// an error of `out` is an [`Error::Io`] with its message, and `out` then holds part of the text.
+pub fn write_obj_to(
+    out: &mut (impl std::io::Write + ?Sized),
+    mesh: &PolyMesh,
+    attributes: &[Attribute],
+    normals: Option<&[f32]>,
+) -> Result<()> {
+    let uv = checked_uv(mesh, attributes, normals)?;
+    let mut piece = Vec::with_capacity(PIECE + 4096);
+    let mut spill = |piece: &mut Vec<u8>| {
+        out.write_all(piece)?;
+        piece.clear();
+        Ok(())
+    };
+    write(mesh, uv, normals, &mut piece, PIECE, &mut spill)
+        .and_then(|()| spill(&mut piece))
+        .and_then(|()| out.flush())
+        .map_err(|e| Error::Io(e.to_string()))
+}
+
+/// The bytes [`write_obj_to`] gathers before handing them on.
+const PIECE: usize = 1 << 16;
+
+/// The channel [`UV`] of `attributes`, when there is one, once it and `normals` are checked
+/// against `mesh`.
+fn checked_uv<'a>(
+    mesh: &PolyMesh,
+    attributes: &'a [Attribute],
+    normals: Option<&[f32]>,
+) -> Result<Option<&'a Attribute>> {
     if let Some(normals) = normals {
         if normals.len() != mesh.positions.len() {
             return Err(Error::InvalidAttribute(format!(
@@ -556,7 +600,7 @@ pub fn write_obj_with_normals(
         }
     }
     let Some(uv) = attributes.iter().find(|a| a.name == UV) else {
-        return Ok(write(mesh, None, normals));
+        return Ok(None);
     };
     attributes::validate(std::slice::from_ref(uv), mesh.num_vertices(), mesh.indices.len())?;
     if uv.item_size > 3 {
@@ -565,33 +609,50 @@ pub fn write_obj_with_normals(
             uv.item_size
         )));
     }
-    Ok(write(mesh, Some(uv), normals))
+    Ok(Some(uv))
 }
 
-fn write(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -> String {
-    // About 13 bytes a float and 8 an index, so that the text is rarely moved while it grows.
+/// About how many bytes the text takes (13 a float, 8 an index), so that a buffer that holds
+/// it whole is rarely moved while it grows.
+fn text_size(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -> usize {
     let floats =
         mesh.positions.len() + uv.map_or(0, |a| a.values.len()) + normals.map_or(0, <[_]>::len);
     let per_corner = 8 * (1 + usize::from(uv.is_some()) + usize::from(normals.is_some()));
-    let mut out = Vec::with_capacity(floats * 13 + mesh.indices.len() * per_corner);
-    let floats_line = |out: &mut Vec<u8>, tag: &[u8], values: &[f32]| {
+    floats * 13 + mesh.indices.len() * per_corner
+}
+
+/// Appends the text of `mesh` (checked) to `out`, handing `out` to `spill` whenever it holds
+/// `piece` bytes or more (`spill` empties it).
+fn write(
+    mesh: &PolyMesh,
+    uv: Option<&Attribute>,
+    normals: Option<&[f32]>,
+    out: &mut Vec<u8>,
+    piece: usize,
+    spill: &mut dyn FnMut(&mut Vec<u8>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut floats_line = |out: &mut Vec<u8>, tag: &[u8], values: &[f32]| {
         out.extend_from_slice(tag);
         for &x in values {
             out.push(b' ');
             text::push_f32(out, x);
         }
         out.push(b'\n');
+        if out.len() >= piece {
+            spill(out)?;
+        }
+        Ok::<(), std::io::Error>(())
     };
     for p in mesh.positions.chunks_exact(3) {
-        floats_line(&mut out, b"v", p);
+        floats_line(out, b"v", p)?;
     }
     if let Some(uv) = uv {
         for value in uv.values.chunks_exact(uv.item_size) {
-            floats_line(&mut out, b"vt", value);
+            floats_line(out, b"vt", value)?;
         }
     }
     for n in normals.unwrap_or_default().chunks_exact(3) {
-        floats_line(&mut out, b"vn", n);
+        floats_line(out, b"vn", n)?;
     }
     let mut start = 0usize;
     for &n in &mesh.face_sizes {
@@ -604,19 +665,21 @@ fn write(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -> St
             let t =
                 uv.map(|a| a.indices.as_ref().map_or(i, |indices| indices[start + k]) as u64 + 1);
             out.push(b' ');
-            text::push_u64(&mut out, v);
+            text::push_u64(out, v);
             if let Some(t) = t {
                 out.push(b'/');
-                text::push_u64(&mut out, t);
+                text::push_u64(out, t);
             }
             if normals.is_some() {
                 out.extend_from_slice(if t.is_some() { b"/" } else { b"//" });
-                text::push_u64(&mut out, v);
+                text::push_u64(out, v);
             }
         }
         out.push(b'\n');
+        if out.len() >= piece {
+            spill(out)?;
+        }
         start += n as usize;
     }
-    // Every byte written is ASCII.
-    String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+    Ok(())
 }
