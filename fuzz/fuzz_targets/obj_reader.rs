@@ -1,10 +1,11 @@
 //! The OBJ reader on arbitrary text: it returns a valid mesh or an error naming a line of the
 //! file; an accepted mesh builds, writes and reads back unchanged, and subdivides. The reader
-//! with tags and UVs too: its `uv` channel fits the mesh and writes and reads back unchanged.
+//! with tags and UVs too: its `uv` channel fits the mesh and writes and reads back unchanged (the
+//! text written in pieces by `write_obj_to` being the same).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use subsurf::io::{read_obj, read_obj_with_tags, write_obj, write_obj_with};
+use subsurf::io::{read_obj, read_obj_with_tags, write_obj, write_obj_to, write_obj_with};
 use subsurf::{subdivide, Error, HalfEdgeMesh, Options, Scheme};
 use subsurf_fuzz::{
     check_connectivity, check_error, check_poly, check_result, MAX_ELEMENTS, MAX_FACES,
@@ -19,6 +20,10 @@ fuzz_target!(|data: &[u8]| {
                 .unwrap_or_else(|e| panic!("the uv channel does not fit the mesh: {e}"));
             let written =
                 write_obj_with(&obj.mesh, &obj.attributes).expect("a read uv channel writes");
+            let mut streamed = Vec::new();
+            write_obj_to(&mut streamed, &obj.mesh, &obj.attributes, None)
+                .expect("a read uv channel streams");
+            assert_eq!(streamed, written.as_bytes(), "write_obj_to against write_obj_with");
             let again = read_obj_with_tags(&written).expect("write_obj_with's output reads back");
             assert_eq!(
                 (&again.mesh, &again.attributes),
