@@ -188,7 +188,7 @@ fn run(args: Args) -> Result<(), String> {
     // Written as it is made: the text of a large result is several times its arrays' size.
     let write = |out: &mut dyn std::io::Write, to: &str| {
         write_obj_to(out, &output, &channels, normals.as_deref()).map_err(|e| match e {
-            subsurf::Error::Io(message) => format!("cannot write to {to}: {message}"),
+            subsurf::Error::Io(message) => format!("cannot write {to}: {message}"),
             e => e.to_string(),
         })
     };
@@ -198,7 +198,7 @@ fn run(args: Args) -> Result<(), String> {
                 std::fs::File::create(path).map_err(|e| format!("cannot write '{path}': {e}"))?;
             write(&mut file, &format!("'{path}'"))?
         }
-        None => write(&mut std::io::stdout().lock(), "standard output")?,
+        None => write(&mut std::io::stdout().lock(), "to standard output")?,
     }
     let write_time = t.elapsed();
     if args.stats {
