@@ -186,9 +186,9 @@ fn run(args: Args) -> Result<(), String> {
 
     let t = Instant::now();
     // Written as it is made: the text of a large result is several times its arrays' size.
-    let write = |out: &mut dyn std::io::Write, to: &str| {
+    let write = |out: &mut dyn std::io::Write, target: &str| {
         write_obj_to(out, &output, &channels, normals.as_deref()).map_err(|e| match e {
-            subsurf::Error::Io(message) => format!("cannot write {to}: {message}"),
+            subsurf::Error::Io(message) => format!("cannot write {target}: {message}"),
             e => e.to_string(),
         })
     };
