@@ -300,7 +300,7 @@ pub(crate) fn build_stencils(
 /// splits), so that just the first rows of the result, the base vertices' descendants, come
 /// out renamed; and only without face-varying channels and vertex tags, which name vertices.
 struct VertexOrder {
-    /// The base mesh, vertex `v` of the caller's named `labels[v]`.
+    /// The base mesh with the caller's vertices under their new names.
     mesh: HalfEdgeMesh,
     /// The caller's vertex of each new name.
     controls: Vec<u32>,

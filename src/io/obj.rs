@@ -548,11 +548,10 @@ pub fn write_obj_with_normals(
     normals: Option<&[f32]>,
 ) -> Result<String> {
     let uv = checked_uv(mesh, attributes, normals)?;
+    // The pieces go into one buffer with room for the whole text, so that it is not moved.
     let mut out = Vec::with_capacity(text_size(mesh, uv, normals));
-    let whole: std::io::Result<()> =
-        write(mesh, uv, normals, &mut out, usize::MAX, &mut |_| Ok(()));
-    // Nothing is spilled, so nothing can fail; and every byte written is ASCII.
-    whole.map_err(|e| Error::Io(e.to_string()))?;
+    write_pieces(&mut out, mesh, uv, normals).map_err(|e| Error::Io(e.to_string()))?;
+    // Every byte written is ASCII.
     Ok(String::from_utf8(out)
         .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
 }
@@ -568,16 +567,26 @@ pub fn write_obj_to(
     normals: Option<&[f32]>,
 ) -> Result<()> {
     let uv = checked_uv(mesh, attributes, normals)?;
+    write_pieces(out, mesh, uv, normals).map_err(|e| Error::Io(e.to_string()))
+}
+
+/// The text of `mesh` with its checked `uv` channel and normals, handed to `out` in pieces of
+/// about [`PIECE`] bytes.
+fn write_pieces(
+    out: &mut (impl std::io::Write + ?Sized),
+    mesh: &PolyMesh,
+    uv: Option<&Attribute>,
+    normals: Option<&[f32]>,
+) -> std::io::Result<()> {
     let mut piece = Vec::with_capacity(PIECE + 4096);
     let mut spill = |piece: &mut Vec<u8>| {
         out.write_all(piece)?;
         piece.clear();
         Ok(())
     };
-    write(mesh, uv, normals, &mut piece, PIECE, &mut spill)
+    write(mesh, uv, normals, &mut piece, &mut spill)
         .and_then(|()| spill(&mut piece))
         .and_then(|()| out.flush())
-        .map_err(|e| Error::Io(e.to_string()))
 }
 
 /// The bytes [`write_obj_to`] gathers before handing them on.
@@ -622,13 +631,12 @@ fn text_size(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -
 }
 
 /// Appends the text of `mesh` (checked) to `out`, handing `out` to `spill` whenever it holds
-/// `piece` bytes or more (`spill` empties it).
+/// [`PIECE`] bytes or more (`spill` empties it).
 fn write(
     mesh: &PolyMesh,
     uv: Option<&Attribute>,
     normals: Option<&[f32]>,
     out: &mut Vec<u8>,
-    piece: usize,
     spill: &mut dyn FnMut(&mut Vec<u8>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let mut floats_line = |out: &mut Vec<u8>, tag: &[u8], values: &[f32]| {
@@ -638,7 +646,7 @@ fn write(
             text::push_f32(out, x);
         }
         out.push(b'\n');
-        if out.len() >= piece {
+        if out.len() >= PIECE {
             spill(out)?;
         }
         Ok::<(), std::io::Error>(())
@@ -676,7 +684,7 @@ fn write(
             }
         }
         out.push(b'\n');
-        if out.len() >= piece {
+        if out.len() >= PIECE {
             spill(out)?;
         }
         start += n as usize;
