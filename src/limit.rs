@@ -148,6 +148,9 @@ struct MaskMerge {
 }
 
 impl MaskMerge {
+    /// The largest valence whose merged masks are kept.
+    const KEPT_VALENCES: usize = 64;
+
     fn new(vertices: usize) -> Self {
         MaskMerge {
             recorded: Default::default(),
@@ -172,7 +175,11 @@ impl MaskMerge {
             i => hood.faces.get(i - 1 - hood.edges.len()).map(|&h| he_from[h as usize]),
         };
         let n = hood.faces.len();
-        let smooth = hood.rule == LimitRule::Smooth && hood.edges.len() == n;
+        // Only valences up to `KEPT_VALENCES` are kept: a template is found and checked slot by
+        // slot, which for the hub of a fan (valence 100k) cost `n²` steps, while such a vertex is
+        // merged from its masks in `n`.
+        let smooth =
+            hood.rule == LimitRule::Smooth && hood.edges.len() == n && n <= Self::KEPT_VALENCES;
         let kept = smooth.then(|| &self.smooth[usize::from(hood.catmull_clark)]);
         if let Some(Some(Some(template))) = kept.map(|t| t.get(n)) {
             self.slots.clear();

@@ -377,3 +377,56 @@ fn a_scattered_vertex_order_gives_the_same_table_renamed() {
         check(&shuffled, attributes, &options, tags, &what);
     }
 }
+
+/// A closed cone whose apex and base centre each join `n` triangles (or `n` quads, the base
+/// split into a ring of quads round its centre when `quads`).
+fn cone(n: u32, quads: bool) -> PolyMesh {
+    let mut positions = vec![0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+    let (mut indices, mut face_sizes) = (Vec::new(), Vec::new());
+    for i in 0..n {
+        let a = std::f32::consts::TAU * i as f32 / n as f32;
+        positions.extend([a.cos(), 0.0, a.sin()]);
+        positions.extend([0.5 * a.cos(), 0.0, 0.5 * a.sin()]);
+    }
+    let (outer, inner) = (|i: u32| 2 + 2 * (i % n), |i: u32| 3 + 2 * (i % n));
+    for i in 0..n {
+        indices.extend([0, outer(i + 1), outer(i)]);
+        face_sizes.push(3);
+        if quads {
+            indices.extend([outer(i), outer(i + 1), inner(i + 1), inner(i)]);
+            face_sizes.push(4);
+        } else {
+            indices.extend([
+                outer(i),
+                outer(i + 1),
+                inner(i + 1),
+                outer(i),
+                inner(i + 1),
+                inner(i),
+            ]);
+            face_sizes.extend([3, 3]);
+        }
+        indices.extend([1, inner(i), inner(i + 1)]);
+        face_sizes.push(3);
+    }
+    PolyMesh { positions, indices, face_sizes }
+}
+
+/// Vertices of a valence past what the build keeps per valence (a fan's hub: the limit masks
+/// merged from each vertex's own, and a half-edge mesh whose hub lists are searched sorted)
+/// give the table what `subdivide` gives.
+#[test]
+fn a_fans_hub_gives_what_subdivide_gives() {
+    for (scheme, quads) in [(Scheme::CatmullClark, true), (Scheme::Loop, false)] {
+        let mesh = cone(100, quads);
+        let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        assert_eq!(base.num_edges(), if quads { 500 } else { 600 }, "{scheme}: edges");
+        for levels in 1..=2 {
+            for (limit, normals) in [(false, false), (true, true)] {
+                let options = options(scheme, levels, limit, normals);
+                let what = format!("{scheme} cone level {levels} limit {limit}");
+                check(&mesh, &[], &options, &Tags::default(), &what);
+            }
+        }
+    }
+}

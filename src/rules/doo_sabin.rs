@@ -43,6 +43,14 @@ fn weight_table() -> &'static [[f32; TABLE_SIZES]; TABLE_SIZES] {
     })
 }
 
+thread_local! {
+    /// The weights of the last face larger than the table, made once for all its corners: an
+    /// `n`-gon's corners need `n` weights each, and computing them per corner cost `n²`
+    /// cosines (a face of 100k corners, the child of a fan's hub, took minutes).
+    static LARGE_FACE: std::cell::RefCell<(usize, Vec<f32>)> =
+        const { std::cell::RefCell::new((0, Vec::new())) };
+}
+
 impl CornerRules for DooSabin {
     #[inline]
     fn corner_point(&self, mesh: &HalfEdgeMesh, half_edge: u32, w: &mut impl Weights) {
@@ -67,7 +75,14 @@ impl CornerRules for DooSabin {
         }
         match weight_table().get(n) {
             Some(weights) => (0..n).for_each(|k| w.corner(corner(k), weights[k])),
-            None => (0..n).for_each(|k| w.corner(corner(k), doo_sabin_weight(n, k))),
+            None => LARGE_FACE.with_borrow_mut(|(size, weights)| {
+                if *size != n {
+                    *size = n;
+                    weights.clear();
+                    weights.extend((0..n).map(|k| doo_sabin_weight(n, k)));
+                }
+                (0..n).for_each(|k| w.corner(corner(k), weights[k]))
+            }),
         }
     }
 

@@ -255,8 +255,12 @@ impl StencilSum<'_> {
             self.stamp = 0;
         }
         self.stamp += 1;
-        rule(self);
         out.overflowed |= self.overflowed;
+        if out.overflowed {
+            // Refused already: the rule is not run (see `limit_rows`).
+            return [out.indices.len() as u32, 0];
+        }
+        rule(self);
         out.append_row(&self.touched[..self.count], &self.sums)
     }
 }
@@ -385,14 +389,23 @@ impl Primvar for Stencils {
             stamp: 0,
         };
         for v in 0..n as u32 {
+            let [a, b, c] = &mut out;
+            let start = a.indices.len();
+            if a.overflowed || self.overflowed {
+                // Refused already: the rest is not gathered (near a fan's hub every row is as
+                // long as the hub's valence, and gathering them all took minutes).
+                for rows in [&mut *a, &mut *b, &mut *c] {
+                    rows.overflowed = true;
+                    rows.spans.push([start as u32, 0]);
+                }
+                continue;
+            }
             sources.clear();
             masks(v, &mut sources);
             sum.next_row();
             let count = sum.gather(self, &sources);
             let touched = &sum.touched[..count];
-            let [a, b, c] = &mut out;
-            let start = a.indices.len();
-            if a.overflowed || self.overflowed || start + touched.len() > a.limit {
+            if start + touched.len() > a.limit {
                 for rows in [&mut *a, &mut *b, &mut *c] {
                     rows.overflowed = true;
                     rows.spans.push([start as u32, 0]);
