@@ -489,21 +489,47 @@ function classify(values, itemSize, copies, info, alwaysFaceVarying = false) {
     if (fv) break;
   }
   if (fv) {
-    for (let w = 0; w < numWelded; w++) {
-      for (let i = start[w]; i < start[w + 1]; i++) {
-        const v = list[i];
-        fv[v] = v;
-        for (let j = start[w]; j < i; j++) {
-          const u = list[j];
-          if (fv[u] === u && same(u, v)) {
-            fv[v] = u;
-            break;
-          }
-        }
+    const compare = (u, v) => {
+      for (let k = 0; k < itemSize; k++) {
+        const d = bits[u * itemSize + k] - bits[v * itemSize + k];
+        if (d) return d;
       }
+      return 0;
+    };
+    for (let w = 0; w < numWelded; w++) {
+      firstEqual(list, start[w], start[w + 1], compare, (v, u) => { fv[v] = u; });
     }
   }
   return { ...info, values, itemSize, fv };
+}
+
+/**
+ * For each copy v in list[from..to] (ascending), found(v, u) with u the first copy there equal
+ * to v by `compare` (a total order, 0 for equal), v itself when none before it is. A small group
+ * is compared pairwise; a large one is sorted, since pairwise the hub of a fan (three.js's cone
+ * has a copy of its apex per segment) cost k² steps: 118 s for a cone of 100k segments.
+ */
+function firstEqual(list, from, to, compare, found) {
+  if (to - from <= 16) {
+    for (let i = from; i < to; i++) {
+      const v = list[i];
+      let u = v;
+      for (let j = from; j < i; j++) {
+        if (compare(list[j], v) === 0) {
+          u = list[j];
+          break;
+        }
+      }
+      found(v, u);
+    }
+    return;
+  }
+  const sorted = Array.from(list.subarray(from, to)).sort((a, b) => compare(a, b) || a - b);
+  let first = sorted[0];
+  for (let i = 0; i < sorted.length; i++) {
+    if (i > 0 && compare(sorted[i - 1], sorted[i]) !== 0) first = sorted[i];
+    found(sorted[i], first);
+  }
 }
 
 /** Per input vertex, the first copy of its welded vertex that agrees on every face-varying channel. */
@@ -512,17 +538,15 @@ function cornerClasses(fvarChannels, copies, numInput) {
   const cls = new Uint32Array(numInput);
   for (let v = 0; v < numInput; v++) cls[v] = v;
   const { start, list, numWelded } = copies;
-  for (let w = 0; w < numWelded; w++) {
-    for (let i = start[w]; i < start[w + 1]; i++) {
-      const v = list[i];
-      for (let j = start[w]; j < i; j++) {
-        const u = list[j];
-        if (cls[u] === u && fvarChannels.every((ch) => ch.fv[u] === ch.fv[v])) {
-          cls[v] = u;
-          break;
-        }
-      }
+  const compare = (u, v) => {
+    for (const ch of fvarChannels) {
+      const d = ch.fv[u] - ch.fv[v];
+      if (d) return d;
     }
+    return 0;
+  };
+  for (let w = 0; w < numWelded; w++) {
+    firstEqual(list, start[w], start[w + 1], compare, (v, u) => { cls[v] = u; });
   }
   return cls;
 }

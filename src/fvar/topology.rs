@@ -2,6 +2,7 @@
 //! how each value is tagged, and which edges are seams (OpenSubdiv's `Vtr::FVarLevel`), analysed
 //! for a first level and inherited by refined ones (`Vtr::FVarRefinement`).
 
+use super::siblings::Distinct;
 use super::{edge_tag, tag, ModeRules};
 use crate::mesh::HalfEdgeMesh;
 use crate::rules::crease::decay;
@@ -565,7 +566,8 @@ impl FVarLevel {
             }
         }
         let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { mismatched };
-        let (mut fan, mut siblings, mut uniques) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut fan, mut siblings) = (Vec::new(), Vec::new());
+        let mut uniques = Distinct::default();
         for v in visit {
             let out = mesh.out_half_edges(v);
             // A vertex without faces keeps one value (zero) that no corner sees.
@@ -597,20 +599,20 @@ impl FVarLevel {
                 let x = indices[h as usize];
                 let s = if i > 0 && indices[fan[i - 1] as usize] == x {
                     siblings[i - 1]
-                } else if i > 0 && (uniques.len() == 1 || (uniques.len() == 2 && uniques[0] != x)) {
+                } else if i > 0
+                    && (uniques.list.len() == 1
+                        || (uniques.list.len() == 2 && uniques.list[0] != x))
+                {
                     // OpenSubdiv compares a third run's value with the first value only, so
                     // a value met again after another one becomes a sibling of its own (with
                     // a span of its own); results depend on it.
-                    uniques.push(x);
-                    uniques.len() - 1
+                    uniques.push(x)
                 } else {
-                    uniques.iter().position(|&u| u == x).unwrap_or_else(|| {
-                        uniques.push(x);
-                        uniques.len() - 1
-                    })
+                    uniques.find(x).unwrap_or_else(|| uniques.push(x))
                 };
                 siblings.push(s);
             }
+            let uniques = &uniques.list;
             let second = numbering.add(v, uniques.len() as u32);
             let value_of = |s: usize| if s == 0 { v } else { second + s as u32 - 1 };
             for (&h, &s) in fan.iter().zip(&siblings) {

@@ -314,6 +314,25 @@ for (const name of subsurf.shapeNames()) {
   });
 }
 
+// A hub with a UV per face: three.js's ConeGeometry gives its apex a copy per segment, each with
+// its own u. subdivideGeometry groups a welded vertex's copies by value; with more than a few
+// copies it sorts them (pairwise, a cone of 100k segments took two minutes). Our mesh of that
+// layout (tests/meshes/own_cone_uv.obj, 80 segments; OpenSubdiv fixtures in tests/fixtures/osd*)
+// split as glTF splits it, against subdivide on the original mesh triangulated.
+await check('a cone with a UV per face at its 80-face apex (as ConeGeometry lays them): Catmull-Clark and Loop level 2 = subdivide on the triangulated mesh', () => {
+  const mesh = subsurf.readObj(readFileSync(join(root, 'tests/meshes/own_cone_uv.obj'), 'utf8'));
+  const apexUvs = new Set();
+  mesh.indices.forEach((v, c) => { if (v === 0) apexUvs.add(mesh.attributes.uv.indices[c]); });
+  assert.equal(apexUvs.size, 80, 'a UV per face at the apex');
+  const eps = 2e-6 * extent(mesh.positions) * 8;
+  for (const scheme of ['catmull-clark', 'loop']) {
+    const out = subdivideGeometry(gltfGeometry(mesh), { scheme, levels: 2, limit: true });
+    const ref = reference(triangulated(mesh), { scheme, levels: 2, limit: true, normals: true });
+    sameVertices(ref, drawn(out), [['uv', 2], ['normals', 3]], eps);
+    assertWatertight(out);
+  }
+});
+
 // three's own geometries: seams (UV splits), poles and, for the cylinder, caps. TorusKnotGeometry
 // repeats its seam positions bit for bit; SphereGeometry and CylinderGeometry compute theirs with
 // sin(2 pi) != 0 and so on, a few 1e-16 apart: they need `weld`.

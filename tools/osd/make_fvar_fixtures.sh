@@ -4,7 +4,9 @@
 #
 #   inputs   every shape of tests/meshes/osd/ and tests/meshes/osd_nonmanifold/ whose faces all
 #            have vt indices (tools/osd/make_fixtures.sh copies them from ../shared/meshes/osd):
-#            catmark_* with Catmull-Clark, loop_* with Loop, bilinear_* with bilinear;
+#            catmark_* with Catmull-Clark, loop_* with Loop, bilinear_* with bilinear; and our
+#            own meshes with vt (tests/meshes/own_*, tools/osd/make_meshes.py: own_cone_uv) with
+#            Catmull-Clark;
 #   modes    the six face-varying linear-interpolation modes (osd_refine --fvar-linear MODE);
 #   levels   1-3 (levels 2 and 3 only while the file stays under a cap: the big shapes,
 #            catmark_car, the chess pieces, the poles, stop at level 1 or 2);
@@ -34,11 +36,11 @@ start_manifest "$dir" \
     "# osd_refine --scheme SCHEME --levels LEVEL --fvar-linear MODE --no-positions [--ignore-tags --boundary edge-and-corner] INPUT" \
     "$(printf '# fixture\tscheme\tboundary\tlevel\tinput\tmode\ttagged')"
 
-for input in $(ls tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj | sort); do
+for input in $(ls tests/meshes/osd/*.obj tests/meshes/osd_nonmanifold/*.obj tests/meshes/own_*.obj | sort); do
     all_corners_have_uvs "$input" || continue
     name=$(basename "$input" .obj)
     case $name in
-        catmark_*) scheme=catmark ;;
+        catmark_* | own_*) scheme=catmark ;;
         loop_*) scheme=loop ;;
         bilinear_*) scheme=bilinear ;;
         *) continue ;;

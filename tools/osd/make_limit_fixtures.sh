@@ -30,8 +30,10 @@ start_manifest "$dir" \
     "# osd_refine --limit --scheme SCHEME --levels LEVEL [--boundary BOUNDARY --ignore-tags] INPUT -o FIXTURE" \
     "$(printf '# fixture\tscheme\tboundary\tlevel\tinput\ttagged')"
 
+# own_cone_uv (tools/osd/make_meshes.py): two vertices of valence 80, with Catmull-Clark.
 for input in $(ls tests/meshes/osd/catmark_*.obj tests/meshes/osd/loop_*.obj \
-                  tests/meshes/osd_nonmanifold/catmark_*.obj tests/meshes/osd_nonmanifold/loop_*.obj | sort); do
+                  tests/meshes/osd_nonmanifold/catmark_*.obj tests/meshes/osd_nonmanifold/loop_*.obj \
+                  tests/meshes/own_cone_uv.obj | sort); do
     name=$(basename "$input" .obj)
     case $name in loop_*) scheme=loop ;; *) scheme=catmark ;; esac
     cases="edge-and-corner:no edge-only:no"
