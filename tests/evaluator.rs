@@ -428,5 +428,18 @@ fn a_fans_hub_gives_what_subdivide_gives() {
                 check(&mesh, &[], &options, &Tags::default(), &what);
             }
         }
+        // Every spoke of the apex a sharp crease, named hub first: each is found at its other
+        // end (the shorter list), and a sharp edge's child is its midpoint (the crease rule).
+        let creases = (0..100u32)
+            .map(|i| subsurf::Crease { vertices: [0, 2 + 2 * i], sharpness: 10.0 })
+            .collect();
+        let tags = Tags { creases, ..Tags::default() };
+        check(&mesh, &[], &options(scheme, 1, false, false), &tags, &format!("{scheme} creased"));
+        let out = subsurf::subdivide_with_tags(&mesh, &Options::new(scheme, 1), &tags).unwrap();
+        let point = |v: usize| Vec3::from_slice(&out.positions[3 * v..3 * v + 3]);
+        let ring = Vec3::from_slice(&mesh.positions[6..9]);
+        let midpoint = (Vec3::Y + ring) / 2.0;
+        let found = (0..out.num_vertices()).any(|v| point(v).distance(midpoint) < 1e-6);
+        assert!(found, "{scheme}: the first spoke's edge point is its midpoint {midpoint}");
     }
 }
