@@ -320,3 +320,41 @@ fn set_positions_keeps_the_connectivity() {
     assert!(infinite.contains("vertex 5 has coordinate z = inf"), "{infinite}");
     assert_eq!(mesh, changed, "a refused call changes nothing");
 }
+
+/// A fan's hub (an outgoing list longer than the build scans, so searched sorted) gets the edges
+/// of the plain definition: one edge per vertex pair, numbered in the order of its lowest
+/// half-edge, from that half-edge's ends, listing its half-edges ascending. Closed cones of
+/// valence 150 as they are, with a fin (a third face on a spoke: non-manifold) and with a face
+/// turned the other way round (two half-edges the same way on a spoke).
+#[test]
+fn a_hubs_edges_are_the_plain_definitions() {
+    let n = 150u32;
+    let mut cone = Vec::new();
+    for i in 0..n {
+        let (a, b) = (2 + i, 2 + (i + 1) % n);
+        cone.extend([0, a, b, 1, b, a]);
+    }
+    let fin = [cone.clone(), vec![0, 2, n + 2]].concat();
+    let mut turned = cone.clone();
+    turned.swap(1, 2);
+    for (what, indices) in [("cone", cone), ("fin", fin), ("turned", turned)] {
+        let positions = vec![0.0; 3 * (n as usize + 3)];
+        let sizes = vec![3; indices.len() / 3];
+        let m = HalfEdgeMesh::from_faces(&positions, &indices, &sizes).unwrap();
+        assert_valid(what, &m);
+        let mut plain: Vec<([u32; 2], Vec<u32>)> = Vec::new();
+        let mut edge_of = std::collections::BTreeMap::<(u32, u32), usize>::new();
+        for (h, &a) in indices.iter().enumerate() {
+            let b = indices[if h % 3 == 2 { h - 2 } else { h + 1 }];
+            match edge_of.get(&(a.min(b), a.max(b))) {
+                Some(&e) => plain[e].1.push(h as u32),
+                None => {
+                    edge_of.insert((a.min(b), a.max(b)), plain.len());
+                    plain.push(([a, b], vec![h as u32]));
+                }
+            }
+        }
+        assert_eq!(edges_of(&m), plain, "{what}");
+        assert_eq!(m.has_non_manifold_edges(), what != "cone", "{what}");
+    }
+}
