@@ -391,28 +391,25 @@ impl Primvar for Stencils {
         for v in 0..n as u32 {
             let [a, b, c] = &mut out;
             let start = a.indices.len();
-            if a.overflowed || self.overflowed {
-                // Refused already: the rest is not gathered (near a fan's hub every row is as
-                // long as the hub's valence, and gathering them all took minutes).
-                for rows in [&mut *a, &mut *b, &mut *c] {
-                    rows.overflowed = true;
-                    rows.spans.push([start as u32, 0]);
+            // Once refused, the rest is not gathered: near a fan's hub every row is as long as
+            // the hub's valence, and gathering them all took minutes.
+            let count = (!a.overflowed && !self.overflowed)
+                .then(|| {
+                    sources.clear();
+                    masks(v, &mut sources);
+                    sum.next_row();
+                    sum.gather(self, &sources)
+                })
+                .filter(|&count| start + count <= a.limit);
+            match count {
+                Some(count) => emit(&sum.touched[..count], &sum.sums, [a, b, c]),
+                None => {
+                    for rows in [&mut *a, &mut *b, &mut *c] {
+                        rows.overflowed = true;
+                        rows.spans.push([start as u32, 0]);
+                    }
                 }
-                continue;
             }
-            sources.clear();
-            masks(v, &mut sources);
-            sum.next_row();
-            let count = sum.gather(self, &sources);
-            let touched = &sum.touched[..count];
-            if start + touched.len() > a.limit {
-                for rows in [&mut *a, &mut *b, &mut *c] {
-                    rows.overflowed = true;
-                    rows.spans.push([start as u32, 0]);
-                }
-                continue;
-            }
-            emit(touched, &sum.sums, [a, b, c]);
         }
         let [positions, first, second] = out;
         (positions, [first, second])
