@@ -630,6 +630,18 @@ fn text_size(mesh: &PolyMesh, uv: Option<&Attribute>, normals: Option<&[f32]>) -
     floats * 13 + mesh.indices.len() * per_corner
 }
 
+/// Hands `out` to `spill` once it holds a piece, [`PIECE`] bytes or more.
+#[inline]
+fn spill_full(
+    out: &mut Vec<u8>,
+    spill: &mut dyn FnMut(&mut Vec<u8>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    if out.len() >= PIECE {
+        spill(out)?;
+    }
+    Ok(())
+}
+
 /// Appends the text of `mesh` (checked) to `out`, handing `out` to `spill` whenever it holds
 /// [`PIECE`] bytes or more (`spill` empties it).
 fn write(
@@ -646,10 +658,7 @@ fn write(
             text::push_f32(out, x);
         }
         out.push(b'\n');
-        if out.len() >= PIECE {
-            spill(out)?;
-        }
-        Ok::<(), std::io::Error>(())
+        spill_full(out, spill)
     };
     for p in mesh.positions.chunks_exact(3) {
         floats_line(out, b"v", p)?;
@@ -684,9 +693,7 @@ fn write(
             }
         }
         out.push(b'\n');
-        if out.len() >= PIECE {
-            spill(out)?;
-        }
+        spill_full(out, spill)?;
         start += n as usize;
     }
     Ok(())

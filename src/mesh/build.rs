@@ -331,7 +331,7 @@ impl LongLists {
         if ends.zip(offsets).fold(0, |m, (&end, &start)| m.max(end - start)) <= Self::LONG {
             return long;
         }
-        for (v, range) in mesh.vertex_offsets.windows(2).enumerate() {
+        for (v, range) in offsets.windows(2).enumerate() {
             if range[1] - range[0] <= Self::LONG {
                 continue;
             }

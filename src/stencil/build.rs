@@ -248,6 +248,11 @@ impl StencilSum<'_> {
 
     /// Runs `rule` and appends the row it gives to `out`; returns the row's span.
     fn row_into(&mut self, out: &mut Stencils, rule: impl FnOnce(&mut Self)) -> [u32; 2] {
+        out.overflowed |= self.overflowed;
+        if out.overflowed {
+            // Refused already: the rule is not run (see `limit_rows`).
+            return [out.indices.len() as u32, 0];
+        }
         self.count = 0;
         self.scale = 1.0;
         if self.stamp == u32::MAX {
@@ -255,11 +260,6 @@ impl StencilSum<'_> {
             self.stamp = 0;
         }
         self.stamp += 1;
-        out.overflowed |= self.overflowed;
-        if out.overflowed {
-            // Refused already: the rule is not run (see `limit_rows`).
-            return [out.indices.len() as u32, 0];
-        }
         rule(self);
         out.append_row(&self.touched[..self.count], &self.sums)
     }
