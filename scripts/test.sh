@@ -19,6 +19,8 @@
 # (www/gltf.html: glTF files opened, subdivided beside the original, textures, skinning, morphs,
 # dense cages drawn faint on both demo pages) end to end (e2e-gltf), a real textured glTF
 # model from npm (@pmndrs/assets) subdivided and drawn there too (e2e-gltf-model),
+# every ```js example of README.md and js/README.md run as pasted, with checks of what it claims
+# (readme: Node, and Chromium for the WebGPU and worker-script ones),
 # subsurf/worker in Node's worker_threads (worker-node) and in headless Chromium (e2e-worker:
 # byte for byte with the main thread, transfers, progress, abort, errors), and a short fuzz run
 # of every cargo-fuzz target (scripts/fuzz.sh; installs nightly and cargo-fuzz once).
@@ -118,6 +120,7 @@ if run build-pkg scripts/build-pkg.sh; then
   run gltf node tests/js/gltf.mjs
   run three-r150 node tests/js/three.mjs --three node_modules/three-r150
   run worker-node node tests/js/worker_node.mjs
+  run readme node tests/js/readme.mjs
   run native-vs-wasm node tests/js/native_vs_wasm.mjs
   if [ -f tests/e2e/demo.mjs ]; then
     run e2e-demo node tests/e2e/demo.mjs
@@ -135,6 +138,7 @@ else
   skip three "package build failed"
   skip gltf "package build failed"
   skip three-r150 "package build failed"
+  skip readme "package build failed"
   skip native-vs-wasm "package build failed"
   skip e2e-demo "package build failed"
   skip e2e-webgpu "package build failed"
