@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
+use crate::regular_rings::RegularRings;
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
 use crate::stencil::{pad, AllRows, StencilTable};
@@ -48,6 +49,9 @@ pub struct Evaluator {
     /// from their (much larger) stencil rows, with their normals; the table's rows give the
     /// others (see `Evaluator::new`).
     patches: Option<RegularPatches>,
+    /// Loop limit points whose level before is regular, in closed form from that level's
+    /// points (see `crate::regular_rings`); the table's rows give the others.
+    rings: Option<RegularRings>,
     /// The weights of the rows a frame reads, each distinct list once, when the table has
     /// tangents (see `crate::shared_weights`).
     shared: Option<SharedWeights>,
@@ -90,6 +94,18 @@ impl Evaluator {
             }
             build.table = patches.rows_into(build.table, &owners);
         }
+        let rings = if patchable || !options.limit || !tags.is_trivial() {
+            None
+        } else {
+            regular_rings(
+                base,
+                options,
+                tags,
+                &build.mesh,
+                build.table.num_stencils(),
+                build.table.bytes(),
+            )
+        };
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,
             (true, true) => NormalSource::Tangents,
@@ -108,8 +124,9 @@ impl Evaluator {
         }
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
-                let rows: Vec<usize> = match &patches {
-                    Some(patches) => patches.rest().iter().map(|&r| r as usize).collect(),
+                let rest = patches.as_ref().map(RegularPatches::rest);
+                let rows: Vec<usize> = match rest.or(rings.as_ref().map(RegularRings::rest)) {
+                    Some(rest) => rest.iter().map(|&r| r as usize).collect(),
                     None => (0..build.table.num_stencils()).collect(),
                 };
                 let weights = [build.table.weights(), first, second];
@@ -125,6 +142,7 @@ impl Evaluator {
             at_build: OnceLock::new(),
             source,
             patches,
+            rings,
             shared,
         })
     }
@@ -199,6 +217,14 @@ impl Evaluator {
         self.patches.as_ref().map_or(0, RegularPatches::num_points)
     }
 
+    /// How many output vertices [`Evaluator::evaluate`] computes in closed form from the level
+    /// before the last rather than from their stencil rows: Loop at the limit without tags, the
+    /// children of regular vertices (valence 6, interior) and of edges between two (see
+    /// `crate::regular_rings`). Same positions and normals to f32 rounding.
+    pub fn ring_vertices(&self) -> usize {
+        self.rings.as_ref().map_or(0, RegularRings::num_points)
+    }
+
     /// Number of output vertices.
     pub fn num_vertices(&self) -> usize {
         self.table.num_stencils()
@@ -251,6 +277,24 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
+        if let Some(rings) = &self.rings {
+            let control = pad(control);
+            let (positions, _) = positions.as_chunks_mut::<3>();
+            match (self.source, normals) {
+                (NormalSource::Tangents, Some(normals)) => {
+                    let (normals, _) = normals.as_chunks_mut::<3>();
+                    let shared = self.shared.as_ref();
+                    let rest = rings.rest();
+                    self.table.points_and_normals(&control, rest, positions, normals, shared);
+                    rings.evaluate_with_normals(&control, positions, normals);
+                }
+                _ => {
+                    self.table.points(&control, rings.rest(), positions);
+                    rings.evaluate(&control, positions);
+                }
+            }
+            return Ok(());
+        }
         if let Some(patches) = &self.patches {
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
@@ -313,6 +357,47 @@ impl Evaluator {
         }
         self.table.evaluate(values, width, out)
     }
+}
+
+/// Loop's closed forms for the last level (`crate::regular_rings`), when every level is Loop's
+/// and the table, with them, stays within `options.max_bytes`: they are an evaluation path,
+/// never a reason to refuse a build. The level before is the control mesh at level 1, else a
+/// refined table of its own, built here.
+fn regular_rings(
+    base: &HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+    faces: &PolyMesh,
+    outputs: usize,
+    table_bytes: u64,
+) -> Option<RegularRings> {
+    // On a mesh that is not a 2-manifold, a vertex whose triangles close one fan can still
+    // have a sharpened edge (a marked half of a non-manifold edge), which its triangles alone
+    // do not show: those keep their rows.
+    let levels = options.levels();
+    let manifold = base.has_simple_edges() && !base.is_non_manifold();
+    if levels == 0 || !manifold || options.schemes.iter().any(|&s| s != Scheme::Loop) {
+        return None;
+    }
+    let budget = options.max_bytes.checked_sub(table_bytes)?;
+    let rings = if levels == 1 {
+        let corners: Vec<u32> = (0..base.num_cells())
+            .flat_map(|c| base.cell_range(c).map(|h| base.he_from[h]))
+            .collect();
+        RegularRings::new(&corners, base.num_vertices(), faces, outputs, None)?
+    } else {
+        let previous = Options {
+            schemes: options.schemes[..levels - 1].to_vec(),
+            limit: false,
+            normals: false,
+            max_bytes: budget,
+            ..options.clone()
+        };
+        let build = build_stencils(base, &[], &previous, tags, None).ok()?;
+        let vertices = build.table.num_stencils();
+        RegularRings::new(&build.mesh.indices, vertices, faces, outputs, Some(build.table))?
+    };
+    (rings.bytes() <= budget).then_some(rings)
 }
 
 #[cfg(test)]

@@ -36,6 +36,7 @@ pub mod predict;
 pub mod primvar;
 pub mod refine;
 pub mod refined;
+mod regular_rings;
 pub mod rules;
 pub mod scheme;
 pub mod shapes;

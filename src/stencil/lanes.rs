@@ -50,6 +50,28 @@ impl Lanes {
         Lanes(f32x4_add(self.0, f32x4_mul(x.0, f32x4_splat(w))))
     }
 
+    /// `self + x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn add(self, x: Lanes) -> Lanes {
+        Lanes(core::arch::wasm32::f32x4_add(self.0, x.0))
+    }
+
+    /// `self * w`.
+    #[inline(always)]
+    pub(crate) fn scale(self, w: f32) -> Lanes {
+        use core::arch::wasm32::{f32x4_mul, f32x4_splat};
+        Lanes(f32x4_mul(self.0, f32x4_splat(w)))
+    }
+
+    /// All four lanes.
+    #[inline(always)]
+    pub(crate) fn xyzw(self) -> [f32; 4] {
+        let mut out = [0.0; 4];
+        // SAFETY: `out` is 16 writable bytes; wasm stores need no alignment.
+        unsafe { core::arch::wasm32::v128_store(out.as_mut_ptr().cast(), self.0) };
+        out
+    }
+
     /// The first three lanes.
     #[inline(always)]
     pub(crate) fn xyz(self) -> [f32; 3] {
@@ -86,6 +108,24 @@ impl Lanes {
             *s += x * w;
         }
         Lanes(sum)
+    }
+
+    /// `self + x`, lane by lane.
+    #[inline(always)]
+    pub(crate) fn add(self, x: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|k| self.0[k] + x.0[k]))
+    }
+
+    /// `self * w`.
+    #[inline(always)]
+    pub(crate) fn scale(self, w: f32) -> Lanes {
+        Lanes(self.0.map(|x| x * w))
+    }
+
+    /// All four lanes.
+    #[inline(always)]
+    pub(crate) fn xyzw(self) -> [f32; 4] {
+        self.0
     }
 
     /// The first three lanes.

@@ -459,6 +459,21 @@ impl StencilTable {
 
     /// The positions of the rows `rows` names from control points padded by [`pad`].
     pub(crate) fn points(&self, control: &[[f32; 4]], rows: impl RowIds, out: &mut [[f32; 3]]) {
+        self.each_point(control, rows, |i, sum| out[i] = sum.xyz());
+    }
+
+    /// Every row's point, padded as [`pad`] pads (for a table whose outputs are another sum's
+    /// control points: `crate::regular_rings`). The rows come in order, so the points are
+    /// pushed rather than written over zeros.
+    pub(crate) fn points_padded(&self, control: &[[f32; 4]]) -> Vec<[f32; 4]> {
+        let mut out = Vec::with_capacity(self.num_stencils());
+        self.each_point(control, AllRows(self.num_stencils()), |_, sum| out.push(sum.xyzw()));
+        out
+    }
+
+    /// The sum of each row `rows` names, handed to `store(row, sum)`.
+    #[inline(always)]
+    fn each_point(&self, control: &[[f32; 4]], rows: impl RowIds, store: impl FnMut(usize, Lanes)) {
         self.sum_rows::<4, _>(
             rows,
             |_| Lanes::ZERO,
@@ -471,7 +486,7 @@ impl StencilTable {
                 let (x, w) = unsafe { self.entry(control, e) };
                 *sum = sum.add_scaled(x, w);
             },
-            |i, sum| out[i] = sum.xyz(),
+            store,
         );
     }
 

@@ -1,0 +1,434 @@
+//! Loop's limit points in closed form from the level before the last, where that level is
+//! regular: what [`crate::patches`] does for Catmull-Clark, for Loop's scheme.
+//!
+//! At the last level `L`, the limit point of a vertex's child is the limit mask of Loop's
+//! scheme (Loop 1987; the masks of `rules::limit`) applied to that child's ring at level `L`,
+//! and the child's ring is itself made by the refinement rules from level `L - 1`. Where the
+//! vertices involved at level `L - 1` are smooth interior vertices of valence 6 (no tags), the
+//! masks are constants, and composed they fold into sums and differences of a few level-`L - 1`
+//! points. With a regular vertex `v` and its ring `q0..q5` counter-clockwise, its child's limit
+//! point and two tangents are
+//!
+//! ```text
+//! P = (6v + Σq) / 12,   t1 = 2(q0 - q3) + (q1 - q4) - (q2 - q5),   t2 = (q1 - q4) + (q2 - q5),
+//! ```
+//!
+//! and for the child of an edge `(a, b)` whose ends are both regular, with `c` opposite the
+//! edge on the left and `d` on the right, `a`'s ring `b, c, a2, a3, a4, d` and `b`'s
+//! `a, d, b2, b3, b4, c`,
+//!
+//! ```text
+//! P  = (63(a + b) + 26(c + d) + 3(a2 + a4 + b2 + b4) + a3 + b3) / 192,
+//! t1 = 13(a - b) + 2(a2 + a4 - b2 - b4) + a3 - b3,   t2 = 6(d - c) + a4 - a2 + b2 - b4.
+//! ```
+//!
+//! The tangents are the limit tangents of `rules::limit` times positive constants, so their
+//! cross product has the same direction. (Worked out and checked against the limit rows in the
+//! sixteenth session, `tools/loop_regular_limit.py`; see DEVELOPERS.md.)
+//!
+//! Why: a limit row of the horse at level 2 reads about 11 control points with three weights
+//! each, some 170 wasm operations a point with the normal; these read 7 or 10 points of the
+//! level before and take about 45. Level `L - 1`'s points are made each frame by a refined
+//! table of their own (at level 1 they are the control points). The table's rows stay whole,
+//! for `stencils()` and the GPU; the points these give are left out of the rows' frame.
+
+use crate::mesh::PolyMesh;
+use crate::stencil::{Lanes, Normals, StencilTable};
+
+/// What a closed form reads: the child of a regular vertex (`[v, q0..q5, output]`) or of an
+/// edge between two (`[a, b, c, d, a2, a3, a4, b2, b3, b4, output]`).
+type VertexCase = [u32; 8];
+type EdgeCase = [u32; 11];
+/// The child of an edge `(a, b)` with a closed fan at each end, one of them not regular:
+/// `[a, b, c, d, x_ca, x_ad, x_bc, x_db, child of a, child of b, output]`, where `x_pq` is the
+/// vertex across edge `(p, q)` from the edge's other end and the children index
+/// [`RegularRings::children`].
+type FanEdgeCase = [u32; 11];
+
+/// Past this many faces a vertex keeps its rows (as `limit::MaskMerge` keeps its templates).
+const MAX_VALENCE: usize = 64;
+
+/// The last level's points that Loop's closed forms give from the level before, and that
+/// level's own table.
+#[derive(Clone, Debug)]
+pub(crate) struct RegularRings {
+    /// Level `L - 1`'s points from the control points; `None` at level 1, where they are the
+    /// control points.
+    previous: Option<StencilTable>,
+    vertices: Vec<VertexCase>,
+    edges: Vec<EdgeCase>,
+    /// Children of edges next to a vertex that is not regular, from the level-`L` vertex
+    /// children they read ([`Self::children`]).
+    fan_edges: Vec<FanEdgeCase>,
+    /// Vertices of the level before whose level-`L` child a fan edge reads, with their fans:
+    /// `[v, start, n]`, the ring at `fans[start..start + n]`.
+    children: Vec<[u32; 3]>,
+    /// Children of vertices with a closed fan of `n != 6` faces: `[v, start, n, output]`.
+    fan_vertices: Vec<[u32; 4]>,
+    /// The rings `children` and `fan_vertices` name, counter-clockwise.
+    fans: Vec<u32>,
+    /// Per valence `n` (up to [`MAX_VALENCE`]): Loop's `β` and limit weight `χ`, and the
+    /// tangent masks `cos(2πk/n)`, `sin(2πk/n)`.
+    masks: Vec<FanMasks>,
+    /// The output vertices no closed form gives, ascending: their rows give them.
+    rest: Vec<u32>,
+    /// Points of the level before, and output vertices: every case's indices are below.
+    parent_vertices: usize,
+    outputs: usize,
+}
+
+/// The weights of a smooth Loop vertex of one valence.
+#[derive(Clone, Debug, Default)]
+struct FanMasks {
+    beta: f32,
+    chi: f32,
+    cos: Vec<f32>,
+    sin: Vec<f32>,
+}
+
+impl FanMasks {
+    fn new(n: usize) -> Self {
+        let beta = crate::rules::loop_beta(n as u32);
+        let chi = (1.0 / (n as f64 + 3.0 / (8.0 * f64::from(beta)))) as f32;
+        let angle = |k: usize| std::f64::consts::TAU * k as f64 / n as f64;
+        let cos = (0..n).map(|k| angle(k).cos() as f32).collect();
+        let sin = (0..n).map(|k| angle(k).sin() as f32).collect();
+        FanMasks { beta, chi, cos, sin }
+    }
+}
+
+impl RegularRings {
+    /// The closed forms of a Loop level from the triangles `parents` of the level before (its
+    /// cells in order, `parent_vertices` vertices) to the output triangles `faces` (cell `t`'s
+    /// children at `4t..4t + 4`, in the order of `refine::ptq`) on `outputs` vertices.
+    /// `previous` gives the parents' points, `None` when they are the control points. `None`
+    /// when no point qualifies, or when the faces do not follow that order.
+    pub(crate) fn new(
+        parents: &[u32],
+        parent_vertices: usize,
+        faces: &PolyMesh,
+        outputs: usize,
+        previous: Option<StencilTable>,
+    ) -> Option<Self> {
+        let (parents, _) = parents.as_chunks::<3>();
+        let (children, _) = faces.indices.as_chunks::<3>();
+        if children.len() != 4 * parents.len() || faces.face_sizes.iter().any(|&n| n != 3) {
+            return None;
+        }
+        let rings = Rings::new(parents, parent_vertices)?;
+        let mut given = vec![false; outputs];
+        let mut vertex_child = vec![u32::MAX; parent_vertices];
+        let (mut edges, mut fan_edges) = (Vec::new(), Vec::new());
+        let mut fans = Vec::new();
+        // Per vertex of the level before, its index in `child_list`, once a fan edge reads it.
+        let mut child_of = vec![u32::MAX; parent_vertices];
+        let mut child_list: Vec<[u32; 3]> = Vec::new();
+        let mut child = |v: u32, fans: &mut Vec<u32>| {
+            let slot = &mut child_of[v as usize];
+            if *slot == u32::MAX {
+                let ring = rings.of(v).unwrap_or(&[]);
+                *slot = child_list.len() as u32;
+                child_list.push([v, fans.len() as u32, ring.len() as u32]);
+                fans.extend_from_slice(ring);
+            }
+            *slot
+        };
+        for (t, &[a, b, c]) in parents.iter().enumerate() {
+            let [f0, f1, f2, f3] = [0, 1, 2, 3].map(|k| children[4 * t + k]);
+            let [e0, e1, e2] = [f0[1], f1[2], f2[0]];
+            if f1[0] != e0 || f2[1] != e1 || f0[2] != e2 || f3 != [e1, e2, e0] {
+                return None;
+            }
+            for (v, child) in [(a, f0[0]), (b, f1[1]), (c, f2[2])] {
+                let slot = vertex_child.get_mut(v as usize)?;
+                if *slot != u32::MAX && *slot != child {
+                    return None;
+                }
+                *slot = child;
+            }
+            for (from, to, out) in [(a, b, e0), (b, c, e1), (c, a, e2)] {
+                if given.get(out as usize).is_none_or(|&g| g) {
+                    continue;
+                }
+                let (Some(ra), Some(rb)) = (rings.from(from, to), rings.from(to, from)) else {
+                    continue;
+                };
+                let (na, nb) = (ra.len(), rb.len());
+                // a's ring from b is b, c, ..., d; b's from a must be a, d, ..., c.
+                if rb[1] != ra[na - 1] || rb[nb - 1] != ra[1] {
+                    continue;
+                }
+                given[out as usize] = true;
+                if na == 6 && nb == 6 {
+                    edges.push([
+                        from, to, ra[1], ra[5], ra[2], ra[3], ra[4], rb[2], rb[3], rb[4], out,
+                    ]);
+                } else {
+                    let (ca, cb) = (child(from, &mut fans), child(to, &mut fans));
+                    let across = [ra[2], ra[na - 2], rb[nb - 2], rb[2]];
+                    let [x_ca, x_ad, x_bc, x_db] = across;
+                    fan_edges.push([from, to, ra[1], rb[1], x_ca, x_ad, x_bc, x_db, ca, cb, out]);
+                }
+            }
+        }
+        let (mut vertices, mut fan_vertices) = (Vec::new(), Vec::new());
+        for (v, &out) in vertex_child.iter().enumerate() {
+            let Some(ring) = rings.of(v as u32) else { continue };
+            if given.get(out as usize).is_none_or(|&g| g) {
+                continue;
+            }
+            given[out as usize] = true;
+            if let &[q0, q1, q2, q3, q4, q5] = ring {
+                vertices.push([v as u32, q0, q1, q2, q3, q4, q5, out]);
+            } else {
+                fan_vertices.push([v as u32, fans.len() as u32, ring.len() as u32, out]);
+                fans.extend_from_slice(ring);
+            }
+        }
+        if vertices.is_empty()
+            && edges.is_empty()
+            && fan_edges.is_empty()
+            && fan_vertices.is_empty()
+        {
+            return None;
+        }
+        let masks = (0..=MAX_VALENCE)
+            .map(|n| if n >= 3 { FanMasks::new(n) } else { FanMasks::default() })
+            .collect();
+        let rest = (0..outputs as u32).filter(|&v| !given[v as usize]).collect();
+        Some(RegularRings {
+            previous,
+            vertices,
+            edges,
+            fan_edges,
+            children: child_list,
+            fan_vertices,
+            fans,
+            masks,
+            rest,
+            parent_vertices,
+            outputs,
+        })
+    }
+
+    /// Number of output vertices the closed forms give.
+    pub(crate) fn num_points(&self) -> usize {
+        self.vertices.len() + self.edges.len() + self.fan_edges.len() + self.fan_vertices.len()
+    }
+
+    /// The output vertices no closed form gives.
+    pub(crate) fn rest(&self) -> &[u32] {
+        &self.rest
+    }
+
+    /// What this adds to the table's bytes: the previous level's table and the cases.
+    pub(crate) fn bytes(&self) -> u64 {
+        let cases = std::mem::size_of_val(&self.vertices[..])
+            + std::mem::size_of_val(&self.edges[..])
+            + std::mem::size_of_val(&self.fan_edges[..])
+            + std::mem::size_of_val(&self.children[..])
+            + std::mem::size_of_val(&self.fan_vertices[..])
+            + std::mem::size_of_val(&self.fans[..])
+            + std::mem::size_of_val(&self.rest[..]);
+        self.previous.as_ref().map_or(0, StencilTable::bytes) + cases as u64
+    }
+
+    /// The points of the level before, from the padded control points.
+    fn parents<'c>(&self, control: &'c [[f32; 4]]) -> std::borrow::Cow<'c, [[f32; 4]]> {
+        match &self.previous {
+            None => control.into(),
+            Some(table) => table.points_padded(control).into(),
+        }
+    }
+
+    /// Writes the closed forms' points from the padded control points.
+    pub(crate) fn evaluate(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
+        let parents = self.parents(control);
+        if positions.len() < self.outputs {
+            return;
+        }
+        self.each(&parents, |out, point, _| {
+            // SAFETY: `out` is a case's output vertex, below `self.outputs` (`new`).
+            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+        });
+    }
+
+    /// Writes the closed forms' points and unit normals (`t1 × t2`, as
+    /// [`crate::limit::normal`]) from the padded control points.
+    pub(crate) fn evaluate_with_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        let parents = self.parents(control);
+        if positions.len() < self.outputs {
+            return;
+        }
+        let mut normals = Normals::new(normals);
+        self.each(&parents, |out, point, [t1, t2]| {
+            // SAFETY: as in `evaluate`.
+            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+            normals.push(out, t1, t2);
+        });
+    }
+
+    /// Each case's output vertex, limit point and tangents, from the parents' points.
+    #[inline(always)]
+    fn each(&self, parents: &[[f32; 4]], mut emit: impl FnMut(usize, Lanes, [Lanes; 2])) {
+        if parents.len() < self.parent_vertices {
+            return;
+        }
+        // SAFETY: every parent index of a case and of a fan is a vertex of the level before
+        // (`Rings::new` checked each against the count), so below `parents.len()`. In wasm the
+        // checks cost about 7 % of the frame.
+        let at = |i: u32| Lanes::load(unsafe { parents.get_unchecked(i as usize) });
+        let fan = |start: u32, n: u32| &self.fans[start as usize..(start + n) as usize];
+        let masks = |n: u32| &self.masks[n as usize];
+        for case in &self.vertices {
+            let [v, q0, q1, q2, q3, q4, q5] = [0, 1, 2, 3, 4, 5, 6].map(|k| at(case[k]));
+            let ring = q0.add(q1).add(q2.add(q3)).add(q4.add(q5));
+            let point = ring.add_lanes(v, 6.0).scale(1.0 / 12.0);
+            let (d03, d14, d25) = (q0.sub(q3), q1.sub(q4), q2.sub(q5));
+            let t1 = d14.sub(d25).add_lanes(d03, 2.0);
+            let t2 = d14.add(d25);
+            emit(case[7] as usize, point, [t1, t2]);
+        }
+        for case in &self.edges {
+            let [a, b, c, d, a2, a3, a4, b2, b3, b4] =
+                [0, 1, 2, 3, 4, 5, 6, 7, 8, 9].map(|k| at(case[k]));
+            let (near_a, near_b) = (a2.add(a4), b2.add(b4));
+            let point = a3
+                .add(b3)
+                .add_lanes(a.add(b), 63.0)
+                .add_lanes(c.add(d), 26.0)
+                .add_lanes(near_a.add(near_b), 3.0)
+                .scale(1.0 / 192.0);
+            let t1 = a3.sub(b3).add_lanes(a.sub(b), 13.0).add_lanes(near_a.sub(near_b), 2.0);
+            let t2 = a4.sub(a2).add(b2.sub(b4)).add_lanes(d.sub(c), 6.0);
+            emit(case[10] as usize, point, [t1, t2]);
+        }
+        for &[v, start, n, out] in &self.fan_vertices {
+            // Loop's smooth limit masks of valence n (`rules::limit`), on differences from v.
+            let (centre, m) = (at(v), masks(n));
+            let (mut sum, mut t1, mut t2) = (Lanes::ZERO, Lanes::ZERO, Lanes::ZERO);
+            for (k, &q) in fan(start, n).iter().enumerate() {
+                let d = at(q).sub(centre);
+                sum = sum.add(d);
+                t1 = t1.add_lanes(d, m.cos[k]);
+                t2 = t2.add_lanes(d, m.sin[k]);
+            }
+            emit(out as usize, centre.add_lanes(sum, m.chi), [t1, t2]);
+        }
+        if self.fan_edges.is_empty() {
+            return;
+        }
+        // Each level-L vertex child a fan edge reads, as its move from its parent:
+        // `β Σ (q - v)`, Loop's smooth vertex rule.
+        let moves: Vec<Lanes> = (self.children.iter())
+            .map(|&[v, start, n]| {
+                let centre = at(v);
+                let sum = fan(start, n).iter().fold(Lanes::ZERO, |s, &q| s.add(at(q).sub(centre)));
+                sum.scale(masks(n).beta)
+            })
+            .collect();
+        for case in &self.fan_edges {
+            // The edge child's level-L ring from b', by Loop's rules, relative to a (so that
+            // the tangents, differences of near points, keep their digits), then the regular
+            // limit masks on it.
+            let a = at(case[0]);
+            let [b, c, d, x_ca, x_ad, x_bc, x_db] =
+                [1, 2, 3, 4, 5, 6, 7].map(|k| at(case[k]).sub(a));
+            // (`new` gave every fan edge its two children.)
+            let moved = |k: usize| moves.get(case[k] as usize).copied().unwrap_or(Lanes::ZERO);
+            let (move_a, move_b) = (moved(8), moved(9));
+            let (three, one) = (0.375, 0.125);
+            let edge = c.add(d).scale(one).add_lanes(b, three);
+            let ring = [
+                b.add(move_b),
+                x_bc.scale(one).add_lanes(b.add(c), three),
+                b.add(x_ca).scale(one).add_lanes(c, three),
+                move_a,
+                b.add(x_ad).scale(one).add_lanes(d, three),
+                x_db.scale(one).add_lanes(d.add(b), three),
+            ];
+            let sum = ring[0].add(ring[1]).add(ring[2].add(ring[3])).add(ring[4].add(ring[5]));
+            let point = a.add(sum.add_lanes(edge, 6.0).scale(1.0 / 12.0));
+            let (d03, d14, d25) =
+                (ring[0].sub(ring[3]), ring[1].sub(ring[4]), ring[2].sub(ring[5]));
+            let t1 = d14.sub(d25).add_lanes(d03, 2.0);
+            let t2 = d14.add(d25);
+            emit(case[10] as usize, point, [t1, t2]);
+        }
+    }
+}
+
+/// The rings of a triangle mesh's vertices with a closed fan (3 to [`MAX_VALENCE`] triangles
+/// around, each neighbour once), counter-clockwise as the triangles are wound.
+struct Rings {
+    /// `list[offsets[v]..offsets[v + 1]]` is `v`'s ring, empty when it has none.
+    offsets: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Rings {
+    fn new(triangles: &[[u32; 3]], vertices: usize) -> Option<Self> {
+        // Each corner's (next, previous) vertex, grouped by vertex: the fan's steps.
+        let mut offsets = vec![0u32; vertices + 1];
+        for &v in triangles.as_flattened() {
+            *offsets.get_mut(v as usize + 1)? += 1;
+        }
+        for v in 1..offsets.len() {
+            offsets[v] += offsets[v - 1];
+        }
+        let mut fill = offsets.clone();
+        let mut steps = vec![[0u32; 2]; 3 * triangles.len()];
+        for &[a, b, c] in triangles {
+            for (v, next, previous) in [(a, b, c), (b, c, a), (c, a, b)] {
+                let slot = &mut fill[v as usize];
+                steps[*slot as usize] = [next, previous];
+                *slot += 1;
+            }
+        }
+        let mut ring = Vec::new();
+        let (mut ring_offsets, mut list) = (Vec::with_capacity(vertices + 1), Vec::new());
+        ring_offsets.push(0);
+        for v in 0..vertices {
+            let fan = &steps[offsets[v] as usize..offsets[v + 1] as usize];
+            if (3..=MAX_VALENCE).contains(&fan.len()) && closed_ring(fan, v as u32, &mut ring) {
+                list.extend_from_slice(&ring);
+            }
+            ring_offsets.push(list.len() as u32);
+        }
+        Some(Rings { offsets: ring_offsets, list })
+    }
+
+    /// The ring of `v`, when it has one.
+    fn of(&self, v: u32) -> Option<&[u32]> {
+        let (start, end) = (*self.offsets.get(v as usize)?, *self.offsets.get(v as usize + 1)?);
+        (end > start).then(|| &self.list[start as usize..end as usize])
+    }
+
+    /// The ring of `v` starting at its neighbour `first`, when it has one.
+    fn from(&self, v: u32, first: u32) -> Option<Vec<u32>> {
+        let ring = self.of(v)?;
+        let k = ring.iter().position(|&q| q == first)?;
+        Some((0..ring.len()).map(|i| ring[(k + i) % ring.len()]).collect())
+    }
+}
+
+/// Whether the fan steps `fan` of vertex `v` close into one ring of distinct neighbours (other
+/// than `v`), left in `ring` from the first step.
+fn closed_ring(fan: &[[u32; 2]], v: u32, ring: &mut Vec<u32>) -> bool {
+    ring.clear();
+    ring.push(fan[0][0]);
+    while ring.len() < fan.len() {
+        let Some(step) = fan.iter().find(|s| s[0] == ring[ring.len() - 1]) else {
+            return false;
+        };
+        ring.push(step[1]);
+    }
+    let closes = fan.iter().find(|s| s[0] == ring[ring.len() - 1]).is_some_and(|s| s[1] == ring[0]);
+    let distinct = (0..ring.len()).all(|i| !ring[i + 1..].contains(&ring[i]));
+    closes && !ring.contains(&v) && distinct
+}
