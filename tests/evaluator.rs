@@ -443,3 +443,62 @@ fn a_fans_hub_gives_what_subdivide_gives() {
         assert!(found, "{scheme}: the first spoke's edge point is its midpoint {midpoint}");
     }
 }
+
+/// Loop's limit points in closed form from the level before (`Evaluator::ring_vertices`) give
+/// what the table's own rows give (`StencilTable::evaluate_with_normals`, the rows every point
+/// keeps for `stencils()` and the GPU), at levels 1 to 3, with and without normals: on a
+/// closed mesh of valences 5 and 6 (an icosahedron: every point in closed form), a torus of
+/// valence-6 triangles with some made 5 and 7 by flipped diagonals, and a sheet with a hole
+/// (the boundary's points keep their rows). It fails with one weight of the edge form changed
+/// (26 to 25) or the two tangent masks of a fan swapped (both checked).
+#[test]
+fn loops_closed_forms_equal_the_tables_rows() {
+    let mut flipped = torus_triangles(12, 10, 1.0, 0.35);
+    // Flip the diagonal of every third quad: valences 5 and 7 around them.
+    for quad in (0..flipped.indices.len() / 6).step_by(3) {
+        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
+        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
+        if t[3] == a && t[4] == c {
+            t.copy_from_slice(&[a, b, d, b, c, d]);
+        }
+    }
+    let hole = subsurf::shapes::triangulate_quads(&grid_with_hole(6, 6, 2..4, 2..4));
+    let meshes = [
+        ("icosahedron", icosahedron(), true),
+        ("flipped torus", flipped, true),
+        ("sheet with a hole", hole, false),
+    ];
+    let mut compared = 0;
+    for (name, mesh, closed) in meshes {
+        let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        let control = deform(&mesh.positions, 0.6);
+        for levels in 1..=3 {
+            for normals in [false, true] {
+                let options = options(Scheme::Loop, levels, true, normals);
+                let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+                let what = format!("{name}, level {levels}, normals {normals}");
+                let n = evaluator.num_vertices();
+                assert!(evaluator.ring_vertices() > 0, "{what}: no closed form");
+                if closed {
+                    assert_eq!(evaluator.ring_vertices(), n, "{what}: every point in closed form");
+                } else {
+                    assert!(evaluator.ring_vertices() < n, "{what}: the boundary keeps its rows");
+                }
+                let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+                evaluator
+                    .evaluate(&control, &mut positions, normals.then_some(&mut got_normals))
+                    .unwrap();
+                let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+                let table = evaluator.table();
+                table.evaluate_with_normals(&control, &mut rows, &mut row_normals).unwrap();
+                assert_close(&positions, &rows, 1e-5 * diagonal(&rows), &what);
+                if normals {
+                    // The GPU evaluator's tolerance against the CPU's (issue 14: 1e-5).
+                    assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
+                }
+                compared += n;
+            }
+        }
+    }
+    assert!(compared > 10_000, "only {compared} points");
+}
