@@ -85,7 +85,8 @@ for (const [name, path, scheme, level] of cases) {
     }
     const oursNs = (median(times) * 1e6) / points;
     const osdNs = reference ? Number(reference.ns_per_stencil) : NaN;
-    const ourBytes = evaluator.stencilBytes / points;
+    // The table and, for Loop at the limit, the closed forms' data (`Evaluator.bytes`).
+    const ourBytes = evaluator.bytes / points;
     console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) |`);
     if (reference && Number(reference.stencils) !== points) console.log(`  (stencil counts differ: OSD ${reference.stencils}, ours ${points})`);
     evaluator.free();

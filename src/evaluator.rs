@@ -225,6 +225,13 @@ impl Evaluator {
         self.rings.as_ref().map_or(0, RegularRings::num_points)
     }
 
+    /// Bytes of what a frame reads besides its input: the table, and for Loop's closed forms
+    /// ([`Evaluator::ring_vertices`]) the level before's own table and the cases (indices of
+    /// the points each reads), which `options.max_bytes` bounds with the table.
+    pub fn bytes(&self) -> u64 {
+        self.table.bytes() + self.rings.as_ref().map_or(0, RegularRings::bytes)
+    }
+
     /// Number of output vertices.
     pub fn num_vertices(&self) -> usize {
         self.table.num_stencils()

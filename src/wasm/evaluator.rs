@@ -134,6 +134,13 @@ impl Evaluator {
         self.inner.table().bytes() as f64
     }
 
+    /// Bytes of everything a frame reads besides its input: the stencil table and, for Loop at
+    /// the limit, the closed forms' data (the level before's table and the points each reads).
+    #[wasm_bindgen(getter)]
+    pub fn bytes(&self) -> f64 {
+        self.inner.bytes() as f64
+    }
+
     /// The output for new control `positions` (a Float32Array, x, y, z per vertex of the mesh
     /// it was built from, all finite): `{ positions, normals? }`, equal to `subdivide`'s with
     /// the same options. `into`, an earlier frame, lends its arrays (written over when their

@@ -49,7 +49,7 @@ const table: StencilArrays = evaluator.stencils();
 const tangents: [Float32Array, Float32Array] | undefined = table.tangentWeights;
 const built: SubdivideResult = evaluator.result();
 const colours: Float32Array = evaluator.evaluateAttribute(new Float32Array(24), 3);
-const counts: number = evaluator.numVertices + evaluator.numControlVertices + evaluator.stencilBytes;
+const counts: number = evaluator.numVertices + evaluator.numControlVertices + evaluator.stencilBytes + evaluator.bytes;
 const hasNormals: boolean = evaluator.hasNormals;
 evaluator.free();
 
