@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
-use crate::regular_rings::RegularRings;
+use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
 use crate::stencil::{pad, AllRows, StencilTable};
@@ -387,11 +387,22 @@ fn regular_rings(
         return None;
     }
     let budget = options.max_bytes.checked_sub(table_bytes)?;
+    let corners = |mesh: &HalfEdgeMesh| -> Vec<u32> {
+        (0..mesh.num_cells()).flat_map(|c| mesh.cell_range(c).map(|h| mesh.he_from[h])).collect()
+    };
     let rings = if levels == 1 {
-        let corners: Vec<u32> = (0..base.num_cells())
-            .flat_map(|c| base.cell_range(c).map(|h| base.he_from[h]))
-            .collect();
-        RegularRings::new(&corners, base.num_vertices(), faces, outputs, None)?
+        RegularRings::new(&corners(base), base.num_vertices(), faces, outputs, Previous::Control)?
+    } else if let Some(steps) = smooth_steps(base, levels - 1) {
+        // A closed mesh: the level before by Loop's rules, level by level, on the levels'
+        // topology alone (`refine::ptq`, which numbers them as the refinement does).
+        let (steps, last) = steps;
+        RegularRings::new(
+            &corners(&last),
+            last.num_vertices(),
+            faces,
+            outputs,
+            Previous::Steps(steps),
+        )?
     } else {
         let previous = Options {
             schemes: options.schemes[..levels - 1].to_vec(),
@@ -402,9 +413,23 @@ fn regular_rings(
         };
         let build = build_stencils(base, &[], &previous, tags, None).ok()?;
         let vertices = build.table.num_stencils();
-        RegularRings::new(&build.mesh.indices, vertices, faces, outputs, Some(build.table))?
+        let previous = Previous::Table(build.table);
+        RegularRings::new(&build.mesh.indices, vertices, faces, outputs, previous)?
     };
     (rings.bytes() <= budget).then_some(rings)
+}
+
+/// Loop's smooth rules for `levels` levels from `base` ([`Step`]) and the last level's mesh,
+/// when every level is a closed mesh with a closed fan at every vertex.
+fn smooth_steps(base: &HalfEdgeMesh, levels: usize) -> Option<(Vec<Step>, HalfEdgeMesh)> {
+    let mut steps = Vec::with_capacity(levels);
+    let mut mesh = std::borrow::Cow::Borrowed(base);
+    for _ in 0..levels {
+        steps.push(Step::new(&mesh)?);
+        let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(&mesh)];
+        mesh = std::borrow::Cow::Owned(crate::refine::ptq::child_mesh(&mesh, zeros));
+    }
+    Some((steps, mesh.into_owned()))
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@
 //! table of their own (at level 1 they are the control points). The table's rows stay whole,
 //! for `stencils()` and the GPU; the points these give are left out of the rows' frame.
 
-use crate::mesh::PolyMesh;
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::stencil::{Lanes, Normals, StencilTable};
 
 /// What a closed form reads: the child of a regular vertex (`[v, q0..q5, output]`) or of an
@@ -52,9 +52,8 @@ const MAX_VALENCE: usize = 64;
 /// level's own table.
 #[derive(Clone, Debug)]
 pub(crate) struct RegularRings {
-    /// Level `L - 1`'s points from the control points; `None` at level 1, where they are the
-    /// control points.
-    previous: Option<StencilTable>,
+    /// How level `L - 1`'s points come from the control points.
+    previous: Previous,
     vertices: Vec<VertexCase>,
     edges: Vec<EdgeCase>,
     /// Children of edges next to a vertex that is not regular, from the level-`L` vertex
@@ -77,6 +76,94 @@ pub(crate) struct RegularRings {
     outputs: usize,
 }
 
+/// Where the points of the level before the last come from.
+#[derive(Clone, Debug)]
+pub(crate) enum Previous {
+    /// They are the control points (level 1).
+    Control,
+    /// A refined table of that level.
+    Table(StencilTable),
+    /// Loop's smooth rules, level by level, on a closed mesh (every vertex has a closed fan):
+    /// each level's points from the one before, a few each, instead of a row of about ten
+    /// control points per point.
+    Steps(Vec<Step>),
+}
+
+impl Previous {
+    fn bytes(&self) -> u64 {
+        match self {
+            Previous::Control => 0,
+            Previous::Table(table) => table.bytes(),
+            Previous::Steps(steps) => steps.iter().map(Step::bytes).sum(),
+        }
+    }
+}
+
+/// One level of Loop's smooth rules on a closed mesh with a closed fan at every vertex, in the
+/// order `refine::ptq` numbers the child level: each vertex's child (`v + β Σ (q - v)`), then
+/// each edge's (`3/8 (a + b) + 1/8 (c + d)`).
+#[derive(Clone, Debug)]
+pub(crate) struct Step {
+    /// Per vertex, its ring at `fans[start..start + n]`: `[start, n]`.
+    vertices: Vec<[u32; 2]>,
+    fans: Vec<u32>,
+    /// Per edge, its ends and the corners opposite it: `[a, b, c, d]`.
+    edges: Vec<[u32; 4]>,
+}
+
+impl Step {
+    /// The step from `mesh`, when it is a closed triangle mesh whose every vertex has a closed
+    /// fan of at most [`MAX_VALENCE`] triangles.
+    pub(crate) fn new(mesh: &HalfEdgeMesh) -> Option<Self> {
+        let cells = mesh.num_cells();
+        if mesh.num_half_edges() != 3 * cells || !mesh.has_simple_edges() {
+            return None;
+        }
+        let corners = &mesh.he_from;
+        let rings = Rings::new(corners.as_chunks::<3>().0, mesh.num_vertices())?;
+        let (mut vertices, mut fans) = (Vec::with_capacity(mesh.num_vertices()), Vec::new());
+        for v in 0..mesh.num_vertices() as u32 {
+            let ring = rings.of(v)?;
+            vertices.push([fans.len() as u32, ring.len() as u32]);
+            fans.extend_from_slice(ring);
+        }
+        let third = |h: u32| corners[mesh.prev_in_cell(h) as usize];
+        let edges = (0..mesh.num_edges())
+            .map(|e| match mesh.edge_half_edges[mesh.edge_range(e)] {
+                [h, twin] => {
+                    let [a, b] = [corners[h as usize], corners[twin as usize]];
+                    Some([a, b, third(h), third(twin)])
+                }
+                _ => None,
+            })
+            .collect::<Option<Vec<_>>>()?;
+        Some(Step { vertices, fans, edges })
+    }
+
+    fn bytes(&self) -> u64 {
+        (std::mem::size_of_val(&self.vertices[..])
+            + std::mem::size_of_val(&self.fans[..])
+            + std::mem::size_of_val(&self.edges[..])) as u64
+    }
+
+    /// The child level's points from `points` (this level's, padded).
+    fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
+        let at = |i: u32| points.get(i as usize).map_or(Lanes::ZERO, Lanes::load);
+        let mut out = Vec::with_capacity(self.vertices.len() + self.edges.len());
+        for (v, &[start, n]) in self.vertices.iter().enumerate() {
+            let centre = at(v as u32);
+            let fan = self.fans.get(start as usize..(start + n) as usize).unwrap_or(&[]);
+            let sum = fan.iter().fold(Lanes::ZERO, |s, &q| s.add(at(q).sub(centre)));
+            let beta = masks.get(n as usize).map_or(0.0, |m| m.beta);
+            out.push(centre.add_lanes(sum, beta).xyzw());
+        }
+        for &[a, b, c, d] in &self.edges {
+            out.push(at(c).add(at(d)).scale(0.125).add_lanes(at(a).add(at(b)), 0.375).xyzw());
+        }
+        out
+    }
+}
+
 /// The weights of a smooth Loop vertex of one valence.
 #[derive(Clone, Debug, Default)]
 struct FanMasks {
@@ -84,6 +171,11 @@ struct FanMasks {
     chi: f32,
     cos: Vec<f32>,
     sin: Vec<f32>,
+}
+
+/// [`FanMasks`] of every valence up to [`MAX_VALENCE`] (none below 3).
+fn fan_masks() -> Vec<FanMasks> {
+    (0..=MAX_VALENCE).map(|n| if n >= 3 { FanMasks::new(n) } else { FanMasks::default() }).collect()
 }
 
 impl FanMasks {
@@ -108,7 +200,7 @@ impl RegularRings {
         parent_vertices: usize,
         faces: &PolyMesh,
         outputs: usize,
-        previous: Option<StencilTable>,
+        previous: Previous,
     ) -> Option<Self> {
         let (parents, _) = parents.as_chunks::<3>();
         let (children, _) = faces.indices.as_chunks::<3>();
@@ -192,9 +284,7 @@ impl RegularRings {
         {
             return None;
         }
-        let masks = (0..=MAX_VALENCE)
-            .map(|n| if n >= 3 { FanMasks::new(n) } else { FanMasks::default() })
-            .collect();
+        let masks = fan_masks();
         let rest = (0..outputs as u32).filter(|&v| !given[v as usize]).collect();
         Some(RegularRings {
             previous,
@@ -230,14 +320,21 @@ impl RegularRings {
             + std::mem::size_of_val(&self.fan_vertices[..])
             + std::mem::size_of_val(&self.fans[..])
             + std::mem::size_of_val(&self.rest[..]);
-        self.previous.as_ref().map_or(0, StencilTable::bytes) + cases as u64
+        self.previous.bytes() + cases as u64
     }
 
     /// The points of the level before, from the padded control points.
     fn parents<'c>(&self, control: &'c [[f32; 4]]) -> std::borrow::Cow<'c, [[f32; 4]]> {
         match &self.previous {
-            None => control.into(),
-            Some(table) => table.points_padded(control).into(),
+            Previous::Control => control.into(),
+            Previous::Table(table) => table.points_padded(control).into(),
+            Previous::Steps(steps) => {
+                let mut points = std::borrow::Cow::Borrowed(control);
+                for step in steps {
+                    points = step.apply(&points, &self.masks).into();
+                }
+                points
+            }
         }
     }
 
