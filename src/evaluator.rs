@@ -12,7 +12,7 @@ use crate::patches::{RegularPatches, NO_PATCH};
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
-use crate::stencil::{pad, AllRows, StencilTable};
+use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
 
@@ -284,43 +284,25 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        if let Some(rings) = &self.rings {
+        let closed_forms = match (&self.patches, &self.rings) {
+            (Some(patches), _) => Some(patches as &dyn ClosedForms),
+            (None, Some(rings)) => Some(rings as &dyn ClosedForms),
+            (None, None) => None,
+        };
+        if let Some(closed) = closed_forms {
+            // The rows of the points no closed form gives, then the closed forms.
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
             match (self.source, normals) {
                 (NormalSource::Tangents, Some(normals)) => {
                     let (normals, _) = normals.as_chunks_mut::<3>();
-                    let shared = self.shared.as_ref();
-                    let rest = rings.rest();
+                    let (rest, shared) = (closed.rest(), self.shared.as_ref());
                     self.table.points_and_normals(&control, rest, positions, normals, shared);
-                    rings.evaluate_with_normals(&control, positions, normals);
+                    closed.points_and_normals(&control, positions, normals);
                 }
                 _ => {
-                    self.table.points(&control, rings.rest(), positions);
-                    rings.evaluate(&control, positions);
-                }
-            }
-            return Ok(());
-        }
-        if let Some(patches) = &self.patches {
-            let control = pad(control);
-            let (positions, _) = positions.as_chunks_mut::<3>();
-            match (self.source, normals) {
-                (NormalSource::Tangents, Some(normals)) => {
-                    let (normals, _) = normals.as_chunks_mut::<3>();
-                    let shared = self.shared.as_ref();
-                    self.table.points_and_normals(
-                        &control,
-                        patches.rest(),
-                        positions,
-                        normals,
-                        shared,
-                    );
-                    patches.evaluate_with_normals(&control, positions, normals);
-                }
-                _ => {
-                    self.table.points(&control, patches.rest(), positions);
-                    patches.evaluate(&control, positions);
+                    self.table.points(&control, closed.rest(), positions);
+                    closed.points(&control, positions);
                 }
             }
             return Ok(());

@@ -21,7 +21,7 @@
 //! GPU evaluator (which runs the rows) must give the CPU evaluator's normals to 1e-5.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::{Lanes, Normals, StencilTable};
+use crate::stencil::{ClosedForms, Lanes, Normals, StencilTable};
 
 /// An output vertex's patch and its sample `(i, j)` there ([`RegularPatches::owners`]).
 pub(crate) type Owner = (u32, [u8; 2]);
@@ -157,11 +157,6 @@ impl RegularPatches {
         self.points.len()
     }
 
-    /// The output vertices no patch gives.
-    pub(crate) fn rest(&self) -> &[u32] {
-        &self.rest
-    }
-
     /// Per output vertex (of `outputs`), its patch and sample `(i, j)`; [`NO_PATCH`] for the
     /// vertices no patch gives. A stencil build leaves the rows of the others empty, and
     /// [`Self::rows_into`] writes them.
@@ -231,9 +226,15 @@ impl RegularPatches {
         let params = self.params[range.clone()].iter().map(|&[i, j]| [i as usize, j as usize]);
         self.points[range].iter().map(|&v| v as usize).zip(params)
     }
+}
+
+impl ClosedForms for RegularPatches {
+    fn rest(&self) -> &[u32] {
+        &self.rest
+    }
 
     /// Writes each patch's points from the padded control points.
-    pub(crate) fn evaluate(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
+    fn points(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
         for p in 0..self.controls.len() {
             let points = self.control_points(control, p);
             // Each control row's value at the current sample `i`: the patch's points come in
@@ -258,7 +259,7 @@ impl RegularPatches {
     /// wound; [`crate::limit::normal`], four at a time) from the padded control points. The
     /// sums run on the points' differences from the patch's control point (1, 1) (see the
     /// module's notes), and the positions add it back (the basis sums to 1).
-    pub(crate) fn evaluate_with_normals(
+    fn points_and_normals(
         &self,
         control: &[[f32; 4]],
         positions: &mut [[f32; 3]],

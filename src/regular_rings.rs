@@ -33,7 +33,7 @@
 //! for `stencils()` and the GPU; the points these give are left out of the rows' frame.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
-use crate::stencil::{Lanes, Normals, StencilTable};
+use crate::stencil::{ClosedForms, Lanes, Normals, StencilTable};
 
 /// What a closed form reads: the child of a regular vertex (`[v, q0..q5, output]`) or of an
 /// edge between two (`[a, b, c, d, a2, a3, a4, b2, b3, b4, output]`).
@@ -306,11 +306,6 @@ impl RegularRings {
         self.vertices.len() + self.edges.len() + self.fan_edges.len() + self.fan_vertices.len()
     }
 
-    /// The output vertices no closed form gives.
-    pub(crate) fn rest(&self) -> &[u32] {
-        &self.rest
-    }
-
     /// What this adds to the table's bytes: the previous level's table and the cases.
     pub(crate) fn bytes(&self) -> u64 {
         let cases = std::mem::size_of_val(&self.vertices[..])
@@ -336,38 +331,6 @@ impl RegularRings {
                 points
             }
         }
-    }
-
-    /// Writes the closed forms' points from the padded control points.
-    pub(crate) fn evaluate(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
-        let parents = self.parents(control);
-        if positions.len() < self.outputs {
-            return;
-        }
-        self.each(&parents, |out, point, _| {
-            // SAFETY: `out` is a case's output vertex, below `self.outputs` (`new`).
-            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
-        });
-    }
-
-    /// Writes the closed forms' points and unit normals (`t1 × t2`, as
-    /// [`crate::limit::normal`]) from the padded control points.
-    pub(crate) fn evaluate_with_normals(
-        &self,
-        control: &[[f32; 4]],
-        positions: &mut [[f32; 3]],
-        normals: &mut [[f32; 3]],
-    ) {
-        let parents = self.parents(control);
-        if positions.len() < self.outputs {
-            return;
-        }
-        let mut normals = Normals::new(normals);
-        self.each(&parents, |out, point, [t1, t2]| {
-            // SAFETY: as in `evaluate`.
-            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
-            normals.push(out, t1, t2);
-        });
     }
 
     /// Each case's output vertex, limit point and tangents, from the parents' points.
@@ -457,6 +420,44 @@ impl RegularRings {
             let t2 = d14.add(d25);
             emit(case[10] as usize, point, [t1, t2]);
         }
+    }
+}
+
+impl ClosedForms for RegularRings {
+    fn rest(&self) -> &[u32] {
+        &self.rest
+    }
+
+    /// Writes the closed forms' points from the padded control points.
+    fn points(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
+        let parents = self.parents(control);
+        if positions.len() < self.outputs {
+            return;
+        }
+        self.each(&parents, |out, point, _| {
+            // SAFETY: `out` is a case's output vertex, below `self.outputs` (`new`).
+            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+        });
+    }
+
+    /// Writes the closed forms' points and unit normals (`t1 × t2`, as
+    /// [`crate::limit::normal`]) from the padded control points.
+    fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        let parents = self.parents(control);
+        if positions.len() < self.outputs {
+            return;
+        }
+        let mut normals = Normals::new(normals);
+        self.each(&parents, |out, point, [t1, t2]| {
+            // SAFETY: as in `evaluate`.
+            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+            normals.push(out, t1, t2);
+        });
     }
 }
 

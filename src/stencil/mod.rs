@@ -574,6 +574,23 @@ impl StencilTable {
     }
 }
 
+/// Points an evaluator makes in closed form from the padded control points rather than from
+/// their rows: Catmull-Clark's regular patches (`crate::patches`), Loop's regular rings
+/// (`crate::regular_rings`). The table's rows give the others.
+pub(crate) trait ClosedForms {
+    /// The output vertices left to the rows, ascending.
+    fn rest(&self) -> &[u32];
+    /// Writes the closed forms' points.
+    fn points(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]);
+    /// Writes the closed forms' points and unit normals ([`crate::limit::normal`]).
+    fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    );
+}
+
 /// Which rows of a table a sum runs over: all of them, or a list (those no patch gives, see
 /// [`crate::patches`]). A type each, so that the loop over all rows has no list to read.
 pub(crate) trait RowIds: Copy {
