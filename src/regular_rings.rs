@@ -242,24 +242,34 @@ impl RegularRings {
                 if given.get(out as usize).is_none_or(|&g| g) {
                     continue;
                 }
-                let (Some(ra), Some(rb)) = (rings.from(from, to), rings.from(to, from)) else {
+                let (Some((na, ra)), Some((nb, rb))) = (rings.from(from, to), rings.from(to, from))
+                else {
                     continue;
                 };
-                let (na, nb) = (ra.len(), rb.len());
                 // a's ring from b is b, c, ..., d; b's from a must be a, d, ..., c.
-                if rb[1] != ra[na - 1] || rb[nb - 1] != ra[1] {
+                if rb(1) != ra(na - 1) || rb(nb - 1) != ra(1) {
                     continue;
                 }
                 given[out as usize] = true;
                 if na == 6 && nb == 6 {
                     edges.push([
-                        from, to, ra[1], ra[5], ra[2], ra[3], ra[4], rb[2], rb[3], rb[4], out,
+                        from,
+                        to,
+                        ra(1),
+                        ra(5),
+                        ra(2),
+                        ra(3),
+                        ra(4),
+                        rb(2),
+                        rb(3),
+                        rb(4),
+                        out,
                     ]);
                 } else {
                     let (ca, cb) = (child(from, &mut fans), child(to, &mut fans));
-                    let across = [ra[2], ra[na - 2], rb[nb - 2], rb[2]];
+                    let across = [ra(2), ra(na - 2), rb(nb - 2), rb(2)];
                     let [x_ca, x_ad, x_bc, x_db] = across;
-                    fan_edges.push([from, to, ra[1], rb[1], x_ca, x_ad, x_bc, x_db, ca, cb, out]);
+                    fan_edges.push([from, to, ra(1), rb(1), x_ca, x_ad, x_bc, x_db, ca, cb, out]);
                 }
             }
         }
@@ -507,11 +517,13 @@ impl Rings {
         (end > start).then(|| &self.list[start as usize..end as usize])
     }
 
-    /// The ring of `v` starting at its neighbour `first`, when it has one.
-    fn from(&self, v: u32, first: u32) -> Option<Vec<u32>> {
+    /// The ring of `v` starting at its neighbour `first`, when it has one: its length, and its
+    /// `i`-th vertex from `first` for any `i` (read in place, not copied: a build asks this
+    /// twice per edge).
+    fn from(&self, v: u32, first: u32) -> Option<(usize, impl Fn(usize) -> u32 + '_)> {
         let ring = self.of(v)?;
         let k = ring.iter().position(|&q| q == first)?;
-        Some((0..ring.len()).map(|i| ring[(k + i) % ring.len()]).collect())
+        Some((ring.len(), move |i: usize| ring[(k + i) % ring.len()]))
     }
 }
 
