@@ -426,8 +426,13 @@ mod tests {
         let mesh = crate::shapes::icosahedron();
         let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
         let options = Options { limit: true, normals: true, ..Options::new(Scheme::Loop, 3) };
-        let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
-        assert!(evaluator.shared.is_some());
+        // A crease, so that every point comes from its row (untagged, Loop's closed forms
+        // would give them all; `crate::regular_rings`).
+        let crease =
+            crate::tags::Crease { vertices: [mesh.indices[0], mesh.indices[1]], sharpness: 2.0 };
+        let tags = Tags { creases: vec![crease], ..Tags::default() };
+        let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
+        assert!(evaluator.shared.is_some() && evaluator.rings.is_none());
         let control: Vec<f32> =
             mesh.positions.iter().enumerate().map(|(i, x)| x * (1.0 + i as f32 / 100.0)).collect();
         let n = 3 * evaluator.num_vertices();
