@@ -28,9 +28,10 @@
 //!
 //! Why: a limit row of the horse at level 2 reads about 11 control points with three weights
 //! each, some 170 wasm operations a point with the normal; these read 7 or 10 points of the
-//! level before and take about 45. Level `L - 1`'s points are made each frame by a refined
-//! table of their own (at level 1 they are the control points). The table's rows stay whole,
-//! for `stencils()` and the GPU; the points these give are left out of the rows' frame.
+//! level before and take about 45. Level `L - 1`'s points are made each frame: at level 1
+//! they are the control points; on a closed cage, by Loop's smooth rules level by level
+//! ([`Step`]); otherwise by a refined table of their own. The table's rows stay whole, for
+//! `stencils()` and the GPU; the points these give are left out of the rows' frame.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::stencil::{ClosedForms, Lanes, Normals, StencilTable};
@@ -464,7 +465,7 @@ impl ClosedForms for RegularRings {
         }
         let mut normals = Normals::new(normals);
         self.each(&parents, |out, point, [t1, t2]| {
-            // SAFETY: as in `evaluate`.
+            // SAFETY: as in `points`.
             unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
             normals.push(out, t1, t2);
         });
