@@ -49,8 +49,8 @@ type FanEdgeCase = [u32; 11];
 /// Past this many faces a vertex keeps its rows (as `limit::MaskMerge` keeps its templates).
 const MAX_VALENCE: usize = 64;
 
-/// The last level's points that Loop's closed forms give from the level before, and that
-/// level's own table.
+/// The last level's points that Loop's closed forms give from the level before, and how that
+/// level's points are made.
 #[derive(Clone, Debug)]
 pub(crate) struct RegularRings {
     /// How level `L - 1`'s points come from the control points.
