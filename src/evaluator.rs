@@ -124,8 +124,7 @@ impl Evaluator {
         }
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
-                let rest = patches.as_ref().map(RegularPatches::rest);
-                let rows: Vec<usize> = match rest.or(rings.as_ref().map(RegularRings::rest)) {
+                let rows: Vec<usize> = match closed_forms(&patches, &rings).map(|c| c.rest()) {
                     Some(rest) => rest.iter().map(|&r| r as usize).collect(),
                     None => (0..build.table.num_stencils()).collect(),
                 };
@@ -284,12 +283,7 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        let closed_forms = match (&self.patches, &self.rings) {
-            (Some(patches), _) => Some(patches as &dyn ClosedForms),
-            (None, Some(rings)) => Some(rings as &dyn ClosedForms),
-            (None, None) => None,
-        };
-        if let Some(closed) = closed_forms {
+        if let Some(closed) = closed_forms(&self.patches, &self.rings) {
             // The rows of the points no closed form gives, then the closed forms.
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
@@ -348,6 +342,19 @@ impl Evaluator {
     }
 }
 
+/// The points an evaluator makes in closed form, if any (the patches are Catmull-Clark's, the
+/// rings Loop's: at most one of the two is there).
+fn closed_forms<'a>(
+    patches: &'a Option<RegularPatches>,
+    rings: &'a Option<RegularRings>,
+) -> Option<&'a dyn ClosedForms> {
+    match (patches, rings) {
+        (Some(patches), _) => Some(patches),
+        (None, Some(rings)) => Some(rings),
+        (None, None) => None,
+    }
+}
+
 /// Loop's closed forms for the last level (`crate::regular_rings`), when every level is Loop's
 /// and the table, with them, stays within `options.max_bytes`: they are an evaluation path,
 /// never a reason to refuse a build. The level before is the control mesh at level 1, else a
@@ -369,17 +376,15 @@ fn regular_rings(
         return None;
     }
     let budget = options.max_bytes.checked_sub(table_bytes)?;
-    let corners = |mesh: &HalfEdgeMesh| -> Vec<u32> {
-        (0..mesh.num_cells()).flat_map(|c| mesh.cell_range(c).map(|h| mesh.he_from[h])).collect()
-    };
+    // A mesh's cells are its half-edges in order, so their corners are `he_from`.
     let rings = if levels == 1 {
-        RegularRings::new(&corners(base), base.num_vertices(), faces, outputs, Previous::Control)?
+        RegularRings::new(&base.he_from, base.num_vertices(), faces, outputs, Previous::Control)?
     } else if let Some(steps) = smooth_steps(base, levels - 1) {
         // A closed mesh: the level before by Loop's rules, level by level, on the levels'
         // topology alone (`refine::ptq`, which numbers them as the refinement does).
         let (steps, last) = steps;
         RegularRings::new(
-            &corners(&last),
+            &last.he_from,
             last.num_vertices(),
             faces,
             outputs,

@@ -43,7 +43,7 @@ type EdgeCase = [u32; 11];
 /// The child of an edge `(a, b)` with a closed fan at each end, one of them not regular:
 /// `[a, b, c, d, x_ca, x_ad, x_bc, x_db, child of a, child of b, output]`, where `x_pq` is the
 /// vertex across edge `(p, q)` from the edge's other end and the children index
-/// [`RegularRings::children`].
+/// `RegularRings::children`.
 type FanEdgeCase = [u32; 11];
 
 /// Past this many faces a vertex keeps its rows (as `limit::MaskMerge` keeps its templates).
@@ -58,15 +58,14 @@ pub(crate) struct RegularRings {
     vertices: Vec<VertexCase>,
     edges: Vec<EdgeCase>,
     /// Children of edges next to a vertex that is not regular, from the level-`L` vertex
-    /// children they read ([`Self::children`]).
+    /// children they read (`children`).
     fan_edges: Vec<FanEdgeCase>,
-    /// Vertices of the level before whose level-`L` child a fan edge reads, with their fans:
-    /// `[v, start, n]`, the ring at `fans[start..start + n]`.
-    children: Vec<[u32; 3]>,
-    /// Children of vertices with a closed fan of `n != 6` faces: `[v, start, n, output]`.
-    fan_vertices: Vec<[u32; 4]>,
-    /// The rings `children` and `fan_vertices` name, counter-clockwise.
-    fans: Vec<u32>,
+    /// Vertices of the level before whose level-`L` child a fan edge reads.
+    children: Vec<u32>,
+    /// Children of vertices with a closed fan of `n != 6` faces: `[v, output]`.
+    fan_vertices: Vec<[u32; 2]>,
+    /// The rings of the level before, which `children` and `fan_vertices` read.
+    rings: Rings,
     /// Per valence `n` (up to [`MAX_VALENCE`]): Loop's `β` and limit weight `χ`, and the
     /// tangent masks `cos(2πk/n)`, `sin(2πk/n)`.
     masks: Vec<FanMasks>,
@@ -105,9 +104,8 @@ impl Previous {
 /// each edge's (`3/8 (a + b) + 1/8 (c + d)`).
 #[derive(Clone, Debug)]
 pub(crate) struct Step {
-    /// Per vertex, its ring at `fans[start..start + n]`: `[start, n]`.
-    vertices: Vec<[u32; 2]>,
-    fans: Vec<u32>,
+    /// Every vertex's ring.
+    rings: Rings,
     /// Per edge, its ends and the corners opposite it: `[a, b, c, d]`.
     edges: Vec<[u32; 4]>,
 }
@@ -122,11 +120,8 @@ impl Step {
         }
         let corners = &mesh.he_from;
         let rings = Rings::new(corners.as_chunks::<3>().0, mesh.num_vertices())?;
-        let (mut vertices, mut fans) = (Vec::with_capacity(mesh.num_vertices()), Vec::new());
-        for v in 0..mesh.num_vertices() as u32 {
-            let ring = rings.of(v)?;
-            vertices.push([fans.len() as u32, ring.len() as u32]);
-            fans.extend_from_slice(ring);
+        if !(0..mesh.num_vertices() as u32).all(|v| rings.of(v).is_some()) {
+            return None;
         }
         let third = |h: u32| corners[mesh.prev_in_cell(h) as usize];
         let edges = (0..mesh.num_edges())
@@ -138,25 +133,22 @@ impl Step {
                 _ => None,
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Step { vertices, fans, edges })
+        Some(Step { rings, edges })
     }
 
     fn bytes(&self) -> u64 {
-        (std::mem::size_of_val(&self.vertices[..])
-            + std::mem::size_of_val(&self.fans[..])
-            + std::mem::size_of_val(&self.edges[..])) as u64
+        self.rings.bytes() + std::mem::size_of_val(&self.edges[..]) as u64
     }
 
     /// The child level's points from `points` (this level's, padded).
     fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
         let at = |i: u32| points.get(i as usize).map_or(Lanes::ZERO, Lanes::load);
-        let mut out = Vec::with_capacity(self.vertices.len() + self.edges.len());
-        for (v, &[start, n]) in self.vertices.iter().enumerate() {
-            let centre = at(v as u32);
-            let fan = self.fans.get(start as usize..(start + n) as usize).unwrap_or(&[]);
-            let sum = fan.iter().fold(Lanes::ZERO, |s, &q| s.add(at(q).sub(centre)));
-            let beta = masks.get(n as usize).map_or(0.0, |m| m.beta);
-            out.push(centre.add_lanes(sum, beta).xyzw());
+        let mut out = Vec::with_capacity(self.rings.vertices() + self.edges.len());
+        // Every vertex has a ring here (`Step::new`): walk them in order.
+        for (v, ring) in self.rings.each() {
+            let centre = at(v);
+            let beta = masks.get(ring.len()).map_or(0.0, |m| m.beta);
+            out.push(centre.add_lanes(ring_sum(&at, centre, ring), beta).xyzw());
         }
         for &[a, b, c, d] in &self.edges {
             out.push(at(c).add(at(d)).scale(0.125).add_lanes(at(a).add(at(b)), 0.375).xyzw());
@@ -204,30 +196,27 @@ impl RegularRings {
         previous: Previous,
     ) -> Option<Self> {
         let (parents, _) = parents.as_chunks::<3>();
-        let (children, _) = faces.indices.as_chunks::<3>();
-        if children.len() != 4 * parents.len() || faces.face_sizes.iter().any(|&n| n != 3) {
+        let (child_faces, _) = faces.indices.as_chunks::<3>();
+        if child_faces.len() != 4 * parents.len() || faces.face_sizes.iter().any(|&n| n != 3) {
             return None;
         }
         let rings = Rings::new(parents, parent_vertices)?;
         let mut given = vec![false; outputs];
         let mut vertex_child = vec![u32::MAX; parent_vertices];
         let (mut edges, mut fan_edges) = (Vec::new(), Vec::new());
-        let mut fans = Vec::new();
-        // Per vertex of the level before, its index in `child_list`, once a fan edge reads it.
+        // Per vertex of the level before, its index in `children`, once a fan edge reads it.
         let mut child_of = vec![u32::MAX; parent_vertices];
-        let mut child_list: Vec<[u32; 3]> = Vec::new();
-        let mut child = |v: u32, fans: &mut Vec<u32>| {
+        let mut children = Vec::new();
+        let mut child = |v: u32| {
             let slot = &mut child_of[v as usize];
             if *slot == u32::MAX {
-                let ring = rings.of(v).unwrap_or(&[]);
-                *slot = child_list.len() as u32;
-                child_list.push([v, fans.len() as u32, ring.len() as u32]);
-                fans.extend_from_slice(ring);
+                *slot = children.len() as u32;
+                children.push(v);
             }
             *slot
         };
         for (t, &[a, b, c]) in parents.iter().enumerate() {
-            let [f0, f1, f2, f3] = [0, 1, 2, 3].map(|k| children[4 * t + k]);
+            let [f0, f1, f2, f3] = [0, 1, 2, 3].map(|k| child_faces[4 * t + k]);
             let [e0, e1, e2] = [f0[1], f1[2], f2[0]];
             if f1[0] != e0 || f2[1] != e1 || f0[2] != e2 || f3 != [e1, e2, e0] {
                 return None;
@@ -267,7 +256,7 @@ impl RegularRings {
                         out,
                     ]);
                 } else {
-                    let (ca, cb) = (child(from, &mut fans), child(to, &mut fans));
+                    let (ca, cb) = (child(from), child(to));
                     let across = [ra(2), ra(na - 2), rb(nb - 2), rb(2)];
                     let [x_ca, x_ad, x_bc, x_db] = across;
                     fan_edges.push([from, to, ra(1), rb(1), x_ca, x_ad, x_bc, x_db, ca, cb, out]);
@@ -284,8 +273,7 @@ impl RegularRings {
             if let &[q0, q1, q2, q3, q4, q5] = ring {
                 vertices.push([v as u32, q0, q1, q2, q3, q4, q5, out]);
             } else {
-                fan_vertices.push([v as u32, fans.len() as u32, ring.len() as u32, out]);
-                fans.extend_from_slice(ring);
+                fan_vertices.push([v as u32, out]);
             }
         }
         if vertices.is_empty()
@@ -302,9 +290,9 @@ impl RegularRings {
             vertices,
             edges,
             fan_edges,
-            children: child_list,
+            children,
             fan_vertices,
-            fans,
+            rings,
             masks,
             rest,
             parent_vertices,
@@ -324,9 +312,8 @@ impl RegularRings {
             + std::mem::size_of_val(&self.fan_edges[..])
             + std::mem::size_of_val(&self.children[..])
             + std::mem::size_of_val(&self.fan_vertices[..])
-            + std::mem::size_of_val(&self.fans[..])
             + std::mem::size_of_val(&self.rest[..]);
-        self.previous.bytes() + cases as u64
+        self.previous.bytes() + self.rings.bytes() + cases as u64
     }
 
     /// The points of the level before, from the padded control points.
@@ -354,8 +341,9 @@ impl RegularRings {
         // (`Rings::new` checked each against the count), so below `parents.len()`. In wasm the
         // checks cost about 7 % of the frame.
         let at = |i: u32| Lanes::load(unsafe { parents.get_unchecked(i as usize) });
-        let fan = |start: u32, n: u32| &self.fans[start as usize..(start + n) as usize];
-        let masks = |n: u32| &self.masks[n as usize];
+        let ring = |v: u32| self.rings.of(v).unwrap_or(&[]);
+        // (Rings have 3 to `MAX_VALENCE` vertices: each has its masks.)
+        let masks = |ring: &[u32]| &self.masks[ring.len()];
         for case in &self.vertices {
             let [v, q0, q1, q2, q3, q4, q5] = [0, 1, 2, 3, 4, 5, 6].map(|k| at(case[k]));
             let ring = q0.add(q1).add(q2.add(q3)).add(q4.add(q5));
@@ -379,11 +367,12 @@ impl RegularRings {
             let t2 = a4.sub(a2).add(b2.sub(b4)).add_lanes(d.sub(c), 6.0);
             emit(case[10] as usize, point, [t1, t2]);
         }
-        for &[v, start, n, out] in &self.fan_vertices {
-            // Loop's smooth limit masks of valence n (`rules::limit`), on differences from v.
-            let (centre, m) = (at(v), masks(n));
+        for &[v, out] in &self.fan_vertices {
+            // Loop's smooth limit masks of its valence (`rules::limit`), on differences from v.
+            let (centre, fan) = (at(v), ring(v));
+            let m = masks(fan);
             let (mut sum, mut t1, mut t2) = (Lanes::ZERO, Lanes::ZERO, Lanes::ZERO);
-            for (k, &q) in fan(start, n).iter().enumerate() {
+            for (k, &q) in fan.iter().enumerate() {
                 let d = at(q).sub(centre);
                 sum = sum.add(d);
                 t1 = t1.add_lanes(d, m.cos[k]);
@@ -397,10 +386,9 @@ impl RegularRings {
         // Each level-L vertex child a fan edge reads, as its move from its parent:
         // `β Σ (q - v)`, Loop's smooth vertex rule.
         let moves: Vec<Lanes> = (self.children.iter())
-            .map(|&[v, start, n]| {
-                let centre = at(v);
-                let sum = fan(start, n).iter().fold(Lanes::ZERO, |s, &q| s.add(at(q).sub(centre)));
-                sum.scale(masks(n).beta)
+            .map(|&v| {
+                let fan = ring(v);
+                ring_sum(&at, at(v), fan).scale(masks(fan).beta)
             })
             .collect();
         for case in &self.fan_edges {
@@ -472,8 +460,15 @@ impl ClosedForms for RegularRings {
     }
 }
 
+/// `Σ (q - centre)` over a ring: what Loop's smooth vertex rule and its limit weight.
+#[inline(always)]
+fn ring_sum(at: &impl Fn(u32) -> Lanes, centre: Lanes, ring: &[u32]) -> Lanes {
+    ring.iter().fold(Lanes::ZERO, |sum, &q| sum.add(at(q).sub(centre)))
+}
+
 /// The rings of a triangle mesh's vertices with a closed fan (3 to [`MAX_VALENCE`] triangles
 /// around, each neighbour once), counter-clockwise as the triangles are wound.
+#[derive(Clone, Debug)]
 struct Rings {
     /// `list[offsets[v]..offsets[v + 1]]` is `v`'s ring, empty when it has none.
     offsets: Vec<u32>,
@@ -510,6 +505,21 @@ impl Rings {
             ring_offsets.push(list.len() as u32);
         }
         Some(Rings { offsets: ring_offsets, list })
+    }
+
+    /// Number of vertices (with a ring or not).
+    fn vertices(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Each vertex with its ring (empty when it has none), in order.
+    fn each(&self) -> impl Iterator<Item = (u32, &[u32])> {
+        let rings = self.offsets.windows(2).map(|w| &self.list[w[0] as usize..w[1] as usize]);
+        (0..).zip(rings)
+    }
+
+    fn bytes(&self) -> u64 {
+        (std::mem::size_of_val(&self.offsets[..]) + std::mem::size_of_val(&self.list[..])) as u64
     }
 
     /// The ring of `v`, when it has one.

@@ -59,35 +59,23 @@ fn the_readmes_rust_examples_compile_and_do_what_they_say() -> Result<(), Box<dy
         assert_eq!(refined.face_sizes, vec![3; 64]);
         assert_eq!(refined.positions.len(), 3 * 34);
         assert_eq!(refined.indices.len(), 3 * 64);
-    }
-    {
-        use subsurf::{Options, PolyMesh, Scheme, Tags};
-        let mesh = PolyMesh {
-            positions: vec![1.0, 1.0, 1.0, 1.0, -1.0, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, 1.0],
-            indices: vec![0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2],
-            face_sizes: vec![3; 4],
-        };
+
+        // The second example in the same scope: its `mesh` and `Options` are the first's, as
+        // the README reads them.
+        use subsurf::Tags;
         let options = Options::new(Scheme::Loop, 2);
-        let colors: Vec<f32> = mesh
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(i, p)| 0.25 * p + 0.1 * (i % 3) as f32)
-            .collect();
+        // An affine function of the positions, which stays that function of the refined ones.
+        let affine = |positions: &[f32]| -> Vec<f32> {
+            positions.iter().enumerate().map(|(i, p)| 0.25 * p + 0.1 * (i % 3) as f32).collect()
+        };
+        let colors = affine(&mesh.positions);
         example!(seen,
             use subsurf::attributes::Attribute;
             use subsurf::scheme::subdivide_with_attributes;
             let color = Attribute::vertex("color", 3, colors);
             let (refined, channels) = subdivide_with_attributes(&mesh, &[color], &options, &Tags::default())?;
         );
-        // An affine function of the positions stays that function of the refined positions.
-        let expected: Vec<f32> = refined
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(i, p)| 0.25 * p + 0.1 * (i % 3) as f32)
-            .collect();
-        assert!(max_diff(&channels[0].values, &expected) < 1e-6);
+        assert!(max_diff(&channels[0].values, &affine(&refined.positions)) < 1e-6);
     }
     {
         let cage = subsurf::PolyMesh {

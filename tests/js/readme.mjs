@@ -55,6 +55,20 @@ const ON_BOX = `function __onBox(geometry) {
   __assert.equal(corners.size, 8, 'the box keeps its 8 corners');
 }\n`;
 const TORUS_KNOT = `import * as __THREE from 'three';\n`;
+/** What the WebGPU examples leave to the reader: an evaluator's BaseMesh, a frame's control
+ * points and a render pass (that records the buffers it is given). */
+const GPU = `${BROWSER_ASSERT}${CUBE}${MAX_DIFF}import { BaseMesh } from 'subsurf';
+const mesh = __cube;
+const base = new BaseMesh(mesh);
+const skinnedPositions = mesh.positions.map((p, i) => p * (1 + 0.2 * (i % 3)));
+const __bound = [];
+const pass = { setVertexBuffer: (slot, buffer) => __bound.push([slot, buffer]) };\n`;
+/** The WebGPU examples' read-back against the CPU evaluator, and the two vertex buffers bound. */
+const GPU_CHECKS = `const cpu = base.evaluator({ levels: 2, limit: true, normals: true }).evaluate(skinnedPositions);
+__assert.ok(__maxDiff(positions, cpu.positions) < 1e-5, 'GPU positions equal the CPU evaluator');
+__assert.ok(__maxDiff(normals, cpu.normals) < 1e-5, 'GPU normals equal the CPU evaluator');
+__assert.equal(__bound.length, 2);
+__assert.ok(__bound.every(([, buffer]) => buffer instanceof GPUBuffer && (buffer.usage & GPUBufferUsage.VERTEX)));\n`;
 
 const CASES = [
   {
@@ -176,30 +190,20 @@ __assert.ok(tangentWeights, 'a table with normals has tangent weights');`,
     match: "const gpu = createGpuEvaluator(device, base.evaluator({ levels: 2, limit: true, normals: true }));\n// or",
     // controlBuffer and encoder are the reader's, made on the device the example asks for:
     // globals, resolved when the example reaches them, on the device it was given.
-    before: `${BROWSER_ASSERT}${CUBE}${MAX_DIFF}import { BaseMesh } from 'subsurf';
-const mesh = __cube;
-const base = new BaseMesh(mesh);
-const skinnedPositions = mesh.positions.map((p, i) => p * (1 + 0.2 * (i % 3)));
-const __devices = [];
+    before: `${GPU}const __devices = [];
 const __requestDevice = GPUAdapter.prototype.requestDevice;
 GPUAdapter.prototype.requestDevice = async function (...args) {
   const device = await __requestDevice.apply(this, args);
   __devices.push(device);
   return device;
 };
-const __bound = [];
 Object.defineProperty(globalThis, 'controlBuffer', { get() {
   const buffer = __devices[0].createBuffer({ size: skinnedPositions.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
   __devices[0].queue.writeBuffer(buffer, 0, skinnedPositions);
   return buffer;
 } });
-Object.defineProperty(globalThis, 'encoder', { get() { return (globalThis.__encoder ??= __devices[0].createCommandEncoder()); } });
-globalThis.pass = { setVertexBuffer: (slot, buffer) => __bound.push([slot, buffer]) };`,
-    after: `const cpu = base.evaluator({ levels: 2, limit: true, normals: true }).evaluate(skinnedPositions);
-__assert.ok(__maxDiff(positions, cpu.positions) < 1e-5, 'GPU positions equal the CPU evaluator');
-__assert.ok(__maxDiff(normals, cpu.normals) < 1e-5, 'GPU normals equal the CPU evaluator');
-__assert.equal(__bound.length, 2);
-__assert.ok(__bound.every(([, buffer]) => buffer instanceof GPUBuffer && (buffer.usage & GPUBufferUsage.VERTEX)));`,
+Object.defineProperty(globalThis, 'encoder', { get() { return (globalThis.__encoder ??= __devices[0].createCommandEncoder()); } });`,
+    after: GPU_CHECKS,
   },
   {
     name: 'README: subsurf/three',
@@ -290,18 +294,8 @@ __assert.equal(out.triangles.length, 3 * 2 * 96);`,
     name: 'npm page: subsurf/webgpu',
     browser: 'webgpu',
     match: "const device = await requestGpuDevice();          // throws, saying why",
-    before: `${BROWSER_ASSERT}${CUBE}${MAX_DIFF}import { BaseMesh } from 'subsurf';
-const mesh = __cube;
-const base = new BaseMesh(mesh);
-const skinnedPositions = mesh.positions.map((p) => 1.5 * p);
-const __bound = [];
-const pass = { setVertexBuffer: (slot, buffer) => __bound.push([slot, buffer]) };`,
-    after: `const cpu = base.evaluator({ levels: 2, limit: true, normals: true }).evaluate(skinnedPositions);
-const { positions, normals } = await gpu.readBack();
-__assert.ok(__maxDiff(positions, cpu.positions) < 1e-5, 'GPU positions equal the CPU evaluator');
-__assert.ok(__maxDiff(normals, cpu.normals) < 1e-5, 'GPU normals equal the CPU evaluator');
-__assert.equal(__bound.length, 2);
-gpu.destroy();`,
+    before: GPU,
+    after: `const { positions, normals } = await gpu.readBack();\n${GPU_CHECKS}gpu.destroy();`,
   },
   {
     name: 'npm page: subsurf/three',
