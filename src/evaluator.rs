@@ -376,20 +376,33 @@ fn regular_rings(
         return None;
     }
     let budget = options.max_bytes.checked_sub(table_bytes)?;
+    if faces.face_sizes.iter().any(|&n| n != 3) {
+        return None;
+    }
+    let children = &faces.indices;
     // A mesh's cells are its half-edges in order, so their corners are `he_from`.
     let rings = if levels == 1 {
-        RegularRings::new(&base.he_from, base.num_vertices(), faces, outputs, Previous::Control)?
-    } else if let Some(steps) = smooth_steps(base, levels - 1) {
+        RegularRings::new(&base.he_from, base.num_vertices(), children, outputs, Previous::Control)?
+    } else if let Some((mut steps, meshes)) = smooth_steps(base, levels - 1) {
         // A closed mesh: the level before by Loop's rules, level by level, on the levels'
         // topology alone (`refine::ptq`, which numbers them as the refinement does).
-        let (steps, last) = steps;
-        RegularRings::new(
-            &last.he_from,
-            last.num_vertices(),
-            faces,
-            outputs,
-            Previous::Steps(steps),
-        )?
+        let [.., before, last] = &meshes[..] else { return None };
+        let previous = if levels >= 3 {
+            // From level 3 the vertex children come from the level before's own closed forms
+            // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
+            let step = steps.pop()?;
+            let inner = RegularRings::new(
+                &before.he_from,
+                before.num_vertices(),
+                &last.he_from,
+                last.num_vertices(),
+                if steps.is_empty() { Previous::Control } else { Previous::Steps(steps) },
+            )?;
+            Previous::Nested(Box::new(inner), step)
+        } else {
+            Previous::Steps(steps)
+        };
+        RegularRings::new(&last.he_from, last.num_vertices(), children, outputs, previous)?
     } else {
         let previous = Options {
             schemes: options.schemes[..levels - 1].to_vec(),
@@ -401,22 +414,29 @@ fn regular_rings(
         let build = build_stencils(base, &[], &previous, tags, None).ok()?;
         let vertices = build.table.num_stencils();
         let previous = Previous::Table(build.table);
-        RegularRings::new(&build.mesh.indices, vertices, faces, outputs, previous)?
+        RegularRings::new(&build.mesh.indices, vertices, children, outputs, previous)?
     };
     (rings.bytes() <= budget).then_some(rings)
 }
 
-/// Loop's smooth rules for `levels` levels from `base` ([`Step`]) and the last level's mesh,
-/// when every level is a closed mesh with a closed fan at every vertex.
-fn smooth_steps(base: &HalfEdgeMesh, levels: usize) -> Option<(Vec<Step>, HalfEdgeMesh)> {
+/// Loop's smooth rules for `levels` levels from `base` ([`Step`]) and the meshes of the last
+/// two levels (the base's among them at level 1), when every level is a closed mesh with a
+/// closed fan at every vertex.
+fn smooth_steps(
+    base: &HalfEdgeMesh,
+    levels: usize,
+) -> Option<(Vec<Step>, [std::borrow::Cow<'_, HalfEdgeMesh>; 2])> {
     let mut steps = Vec::with_capacity(levels);
-    let mut mesh = std::borrow::Cow::Borrowed(base);
+    let mut meshes = [std::borrow::Cow::Borrowed(base), std::borrow::Cow::Borrowed(base)];
     for _ in 0..levels {
-        steps.push(Step::new(&mesh)?);
-        let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(&mesh)];
-        mesh = std::borrow::Cow::Owned(crate::refine::ptq::child_mesh(&mesh, zeros));
+        let mesh = &meshes[1];
+        steps.push(Step::new(mesh)?);
+        let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
+        let child = crate::refine::ptq::child_mesh(mesh, zeros);
+        meshes.swap(0, 1);
+        meshes[1] = std::borrow::Cow::Owned(child);
     }
-    Some((steps, mesh.into_owned()))
+    Some((steps, meshes))
 }
 
 #[cfg(test)]
