@@ -4,7 +4,9 @@
 // same mesh, scheme, level and stencil count. Refined stencils ("refined") and the limit with
 // normals ("limit": OpenSubdiv's LimitStencilTable with du/dv, ours with the two tangent weights
 // and the normal computed per point). Also: our evaluator's build time against one `subdivide`
-// call with the same options, and both tables' bytes per output point. Figures, not assertions.
+// call with the same options, and both tables' bytes per output point; and the frame left in
+// place (`Evaluator.evaluateView`, views of the module's memory: no copy out). Figures, not
+// assertions.
 //
 //   node bench/stencil.mjs [REPEATS]     (after scripts/build-pkg.sh; default 10 timed frames)
 //
@@ -51,8 +53,8 @@ const median = (times) => [...times].sort((a, b) => a - b)[times.length >> 1];
 const best = (times) => Math.min(...times);
 const timeIt = (n, f) => Array.from({ length: n }, () => { const s = performance.now(); f(); return performance.now() - s; });
 
-console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | OSD B/pt | ours B/pt | build/subdivide |`);
-console.log('|---|---|---|---|---|---|---|---|---|---|');
+console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | in place ns/pt | OSD B/pt | ours B/pt | build/subdivide |`);
+console.log('|---|---|---|---|---|---|---|---|---|---|---|');
 for (const [name, path, scheme, level] of cases) {
   const mesh = readObj(readFileSync(path, 'utf8'));
   const base = new BaseMesh({ positions: mesh.positions, indices: mesh.indices, faceSizes: mesh.faceSizes });
@@ -76,18 +78,26 @@ for (const [name, path, scheme, level] of cases) {
     };
     step();
     frame = evaluator.evaluate(control, frame); // warm-up
+    // Alternating with `evaluateView` (the frame left in place, as views of the module's
+    // memory: the same work without the copy out).
     const times = [];
+    const inPlace = [];
     for (let r = 0; r < repeats; r++) {
       step();
-      const start = performance.now();
+      let start = performance.now();
       frame = evaluator.evaluate(control, frame);
       times.push(performance.now() - start);
+      step();
+      start = performance.now();
+      evaluator.evaluateView(control);
+      inPlace.push(performance.now() - start);
     }
+    const inPlaceNs = (median(inPlace) * 1e6) / points;
     const oursNs = (median(times) * 1e6) / points;
     const osdNs = reference ? Number(reference.ns_per_stencil) : NaN;
     // The table and, for Loop at the limit, the closed forms' data (`Evaluator.bytes`).
     const ourBytes = evaluator.bytes / points;
-    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) |`);
+    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${inPlaceNs.toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) |`);
     if (reference && Number(reference.stencils) !== points) console.log(`  (stencil counts differ: OSD ${reference.stencils}, ours ${points})`);
     evaluator.free();
   }

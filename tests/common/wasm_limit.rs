@@ -118,6 +118,34 @@ fn an_evaluator_gives_subdivide_for_every_frame() {
     assert!(within(&same.to_vec(), &f32s(&plain, "positions"), 1e-5));
 }
 
+/// `evaluateView` gives `evaluate`'s frame bit for bit, as views of the module's memory that
+/// the evaluator's next frame writes over; it throws as `evaluate` does, and `evaluate` lends
+/// no view's arrays (it makes fresh ones).
+#[wasm_bindgen_test]
+fn an_evaluator_view_is_its_frame_in_place() {
+    let base = BaseMesh::new(&cube()).unwrap();
+    let mut evaluator = base.evaluator(&limit_options(2.0, true, true)).unwrap();
+    let frame_at = |t: f32| JsValue::from(Float32Array::from(&twisted(&cube_arrays().0, t)[..]));
+    let copied = ok(evaluator.evaluate(&frame_at(0.5), &JsValue::UNDEFINED));
+    let view = ok(evaluator.evaluate_view(&frame_at(0.5)));
+    let memory = Reflect::get(&wasm_bindgen::memory(), &"buffer".into()).unwrap();
+    for key in ["positions", "normals"] {
+        assert_eq!(f32s(&view, key), f32s(&copied, key), "{key}");
+        let array: Float32Array = field(&view, key).dyn_into().unwrap();
+        assert_eq!(JsValue::from(array.buffer()), memory, "{key} is a view of the memory");
+    }
+    let next = ok(evaluator.evaluate(&frame_at(1.3), &view));
+    assert!(!Object::is(&field(&next, "positions"), &field(&view, "positions")), "not lent");
+    assert_eq!(f32s(&view, "positions"), f32s(&next, "positions"), "written over");
+    assert_ne!(f32s(&view, "positions"), f32s(&copied, "positions"));
+    let short: JsValue = Float32Array::new_with_length(9).into();
+    assert_mentions(&thrown(evaluator.evaluate_view(&short)), &["has 9 floats; expected 24"]);
+    assert_eq!(
+        f32s(&ok(evaluator.evaluate_view(&frame_at(0.5))), "normals"),
+        f32s(&copied, "normals")
+    );
+}
+
 #[wasm_bindgen_test]
 fn evaluator_errors_are_clear_and_it_keeps_working() {
     let base = BaseMesh::new(&cube()).unwrap();

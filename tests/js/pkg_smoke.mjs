@@ -150,6 +150,7 @@ for (const [name, api] of [['subsurf/node', node], ["'subsurf' in Node, no init"
     assert.equal(evaluator.evaluate(cube().positions).positions.length, 3 * 26, 'an evaluator outlives its BaseMesh');
     evaluator.free();
     assert.throws(() => evaluator.evaluate(cube().positions), freed('Evaluator\\.evaluate'), 'a freed Evaluator throws');
+    assert.throws(() => evaluator.evaluateView(cube().positions), freed('Evaluator\\.evaluateView'), 'a freed Evaluator throws on evaluateView');
     if (guarded) {
       evaluator.free();
       base[Symbol.dispose]?.();

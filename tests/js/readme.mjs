@@ -172,8 +172,14 @@ for (let i = 0; i < p.length; i += 3) {
 const mesh = __cube;
 const skinnedPositions = mesh.positions.map((p, i) => p * (1 + 0.2 * (i % 3)));
 const vertexColours = mesh.positions.map((p) => 0.5 * p + 0.5);`,
-    // "evaluate equals subdivide on the same positions and options (to f32 rounding)".
-    after: `const expected = subdivide({ ...mesh, positions: skinnedPositions }, { levels: 2, limit: true, normals: true });
+    // "evaluate equals subdivide on the same positions and options (to f32 rounding)"; the
+    // views hold the same frame (checked first: a later call may grow the memory).
+    after: `__assert.deepEqual(inPlace.positions, frame.positions);
+__assert.deepEqual(inPlace.normals, frame.normals);
+const __twice = evaluator.evaluateView(skinnedPositions.map((p) => 2 * p));
+__assert.deepEqual(inPlace.positions, __twice.positions, 'the next frame writes over the views');
+__assert.ok(inPlace.positions.every((p, i) => p === 2 * frame.positions[i]), 'twice the cage, twice the frame');
+const expected = subdivide({ ...mesh, positions: skinnedPositions }, { levels: 2, limit: true, normals: true });
 __assert.ok(__maxDiff(frame.positions, expected.positions) < 1e-5);
 __assert.ok(__maxDiff(frame.normals, expected.normals) < 1e-5);
 __assert.deepEqual(indices, expected.indices);

@@ -44,6 +44,7 @@ const limitNormals: Float32Array | undefined = limit.normals;
 const evaluator: Evaluator = new BaseMesh(cube).evaluator({ levels: 2, limit: true, normals: true });
 let frame: EvaluatedFrame = evaluator.evaluate(new Float32Array(24));
 frame = evaluator.evaluate(new Float32Array(24), frame);
+frame = evaluator.evaluateView(new Float32Array(24));
 const frameNormals: Float32Array | undefined = frame.normals;
 const table: StencilArrays = evaluator.stencils();
 const tangents: [Float32Array, Float32Array] | undefined = table.tangentWeights;
