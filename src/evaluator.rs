@@ -386,7 +386,7 @@ fn regular_rings(
     } else if let Some((mut steps, meshes)) = smooth_steps(base, levels - 1) {
         // A closed mesh: the level before by Loop's rules, level by level, on the levels'
         // topology alone (`refine::ptq`, which numbers them as the refinement does).
-        let [.., before, last] = &meshes[..] else { return None };
+        let [before, last] = &meshes;
         let previous = if levels >= 3 {
             // From level 3 the vertex children come from the level before's own closed forms
             // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
