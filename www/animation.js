@@ -3,15 +3,15 @@
 // (BaseMesh.evaluator with the options of the result on screen), built on this page once per
 // mesh and options, never per frame:
 //
-// - CPU path: evaluator.evaluate(deformedCage, lastFrame) in WebAssembly on the main thread, its
-//   positions and normals written over the WebGL2 vertex buffers (renderer.js updateRefined;
-//   the index buffers were uploaded once). With UVs the surface is toDrawable's, whose vertices
+// - CPU path: evaluator.evaluateView(deformedCage) in WebAssembly on the main thread, its
+//   positions and normals (views of wasm memory, no copy out) written over the WebGL2 vertex
+//   buffers at once (renderer.js updateRefined; the index buffers were uploaded once). With UVs the surface is toDrawable's, whose vertices
 //   are split along seams: the frame is gathered through its origins.
 // - GPU path: subsurf/webgpu's createGpuEvaluator(device, evaluator) runs the same stencil table
 //   in a WebGPU compute shader and gpu-renderer.js draws its positions and normals buffers
 //   directly (no read-back) on a canvas of its own.
 //
-// Timings, a running mean over the last TIMING_WINDOW frames: CPU is evaluate() alone
+// Timings, a running mean over the last TIMING_WINDOW frames: CPU is evaluateView() alone
 // (performance.now() around the call). GPU is the GPU's own time for the evaluation when the
 // adapter has 'timestamp-query' (two timestamps around the evaluator's compute pass, written by
 // two empty compute passes that bracket it, since the evaluator records its own pass; Chrome
@@ -120,7 +120,7 @@ export class Animator {
     this.gpuCanvas = gpuCanvas;
     this.loadSubsurf = loadSubsurf;
     this.gpu = null; // probeWebGpu()'s answer, once known
-    this.prepared = null; // { display, evaluator, rest, deformed, extent, frame, origins, surfacePositions, surfaceNormals }
+    this.prepared = null; // { display, evaluator, rest, deformed, extent, origins, surfacePositions, surfaceNormals }
     this.gpuState = null; // { evaluator, control, renderer, queries? }
     this.cpuTime = new RunningMean();
     this.gpuTime = new RunningMean();
@@ -164,7 +164,6 @@ export class Animator {
       rest: cage.positions,
       deformed: new Float32Array(cage.positions.length),
       extent: extentOf(cage.positions),
-      frame: undefined,
       origins,
       surfacePositions: origins ? new Float32Array(3 * origins.length) : null,
       surfaceNormals: origins ? new Float32Array(3 * origins.length) : null,
@@ -245,9 +244,9 @@ export class Animator {
   stepCpu() {
     const p = this.prepared;
     const started = performance.now();
-    p.frame = p.evaluator.evaluate(p.deformed, p.frame);
+    // Views of the evaluator's output: read here, before any other call into subsurf.
+    const { positions, normals } = p.evaluator.evaluateView(p.deformed);
     this.cpuTime.add(performance.now() - started);
-    const { positions, normals } = p.frame;
     let surfacePositions = positions;
     let surfaceNormals = normals ?? null;
     if (p.origins) {
