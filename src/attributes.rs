@@ -103,16 +103,17 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
             ));
         }
         // A pass without an early exit vectorizes; the place is looked for only on failure.
-        let all_finite = a.values.iter().fold(true, |ok, x| ok & x.is_finite());
-        let first_bad = || a.values.iter().position(|x| !x.is_finite());
-        if let Some(k) = (!all_finite).then(first_bad).flatten() {
+        let all_usable = a.values.iter().fold(true, |ok, &x| ok & crate::mesh::usable(x));
+        let first_bad = || a.values.iter().position(|&x| !crate::mesh::usable(x));
+        if let Some(k) = (!all_usable).then(first_bad).flatten() {
             return Err(invalid(
                 name,
                 format!(
-                    "value {} has component {} = {}; every value must be a finite number",
+                    "value {} has component {} = {}; {}",
                     k / a.item_size,
                     k % a.item_size,
-                    a.values[k]
+                    a.values[k],
+                    crate::mesh::unusable_because(a.values[k], "value")
                 ),
             ));
         }

@@ -253,12 +253,13 @@ impl Evaluator {
                 self.num_control_vertices()
             )));
         }
-        if let Some(i) = control.iter().position(|x| !x.is_finite()) {
+        if let Some(i) = control.iter().position(|&x| !crate::mesh::usable(x)) {
             return Err(Error::InvalidAttribute(format!(
-                "evaluate: positions[{i}] (vertex {}, {}) is {}; every coordinate must be finite",
+                "evaluate: positions[{i}] (vertex {}, {}) is {}; {}",
                 i / 3,
                 ["x", "y", "z"][i % 3],
-                control[i]
+                control[i],
+                crate::mesh::unusable_because(control[i], "coordinate")
             )));
         }
         let outputs = 3 * self.num_vertices();

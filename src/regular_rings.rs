@@ -173,7 +173,10 @@ impl Step {
         // SAFETY: the centres, the rings and the edges hold vertices of the mesh the step was
         // made from (`Step::new`; `reorder` permutes them), so below `points.len()`. As in
         // `RegularRings::each`, the checks are a good part of the loop in wasm.
-        let at = |i: u32| Lanes::load(unsafe { points.get_unchecked(i as usize) });
+        let at = |i: u32| {
+            debug_assert!((i as usize) < points.len());
+            Lanes::load(unsafe { points.get_unchecked(i as usize) })
+        };
         let beta = |n: usize| masks.get(n).map_or(0.0, |m| m.beta);
         let regular = beta(6);
         out.extend(self.centres.iter().map(|&v| {
@@ -482,7 +485,10 @@ impl RegularRings {
         let at = |i: u32| Lanes::load(unsafe { parents.get_unchecked(i as usize) });
         // SAFETY: as `at`, with the index times 16 (the regular cases, `new`). In wasm that
         // spares a shift per read: x64 addressing scales by at most 8.
-        let at_byte = |b: u32| Lanes::load(unsafe { &*parents.as_ptr().byte_add(b as usize) });
+        let at_byte = |b: u32| {
+            debug_assert!(b.is_multiple_of(16) && (b as usize) < 16 * parents.len());
+            Lanes::load(unsafe { &*parents.as_ptr().byte_add(b as usize) })
+        };
         let ring = |v: u32| self.rings.of(v).unwrap_or(&[]);
         // (Rings have 3 to `MAX_VALENCE` vertices: each has its masks.)
         let masks = |ring: &[u32]| &self.masks[ring.len()];

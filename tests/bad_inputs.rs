@@ -301,6 +301,7 @@ cases! {
     nan_coordinate;
     infinite_coordinate;
     negative_infinite_coordinate;
+    too_large_coordinate;
     non_manifold_edge_doo_sabin;
     non_manifold_edge_sqrt3;
     non_manifold_vertex_doo_sabin;
@@ -377,6 +378,7 @@ cases! {
     channel_array_of_the_wrong_type;
     channel_nan;
     channel_infinity;
+    channel_too_large;
     channel_unknown_field;
     channel_indices_wrong_length;
     channel_indices_out_of_range;

@@ -465,6 +465,10 @@ fn parse_coordinate(word: &str, line: usize) -> Result<f32> {
     if !value.is_finite() {
         return Err(obj_error(line, format!("coordinate '{word}' is not a finite 32-bit number")));
     }
+    if !crate::mesh::usable(value) {
+        let why = crate::mesh::unusable_because(value, "coordinate");
+        return Err(obj_error(line, format!("coordinate '{word}' is too large: {why}")));
+    }
     Ok(value)
 }
 

@@ -92,17 +92,19 @@ fn mixed_to_vertices(indices: &[u32], cell_offsets: &[u32]) -> Vec<u32> {
     he_to
 }
 
-/// Refuses a NaN or infinite coordinate, naming the first.
+/// Refuses a NaN, infinite or too large coordinate ([`super::MAX_COORDINATE`]), naming the
+/// first.
 pub(crate) fn check_finite(positions: &[f32]) -> Result<()> {
-    if positions.iter().fold(true, |ok, x| ok & x.is_finite()) {
+    if positions.iter().fold(true, |ok, &x| ok & super::usable(x)) {
         return Ok(());
     }
-    let i = positions.iter().position(|x| !x.is_finite()).unwrap_or_default();
+    let i = positions.iter().position(|&x| !super::usable(x)).unwrap_or_default();
     Err(Error::mesh(format!(
-        "vertex {} has coordinate {} = {}; every coordinate must be a finite number",
+        "vertex {} has coordinate {} = {}; {}",
         i / 3,
         ["x", "y", "z"][i % 3],
-        positions[i]
+        positions[i],
+        super::unusable_because(positions[i], "coordinate")
     )))
 }
 

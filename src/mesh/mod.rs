@@ -30,6 +30,30 @@ pub(crate) use poly::{chunked, quad_and_fan_chunks};
 
 use crate::error::Result;
 
+/// The largest coordinate (and attribute value) accepted, in magnitude. The rules and the
+/// stencils sum many values before they scale them, and past this such sums could overflow
+/// f32 (about 3.4e38) into infinities: a fuzzed OBJ file with a coordinate of 1.9e38 gave
+/// Catmull-Clark edge points of infinity. Even so, a valence of millions stays in range.
+pub const MAX_COORDINATE: f32 = 1e30;
+
+/// Whether `x` is finite and within [`MAX_COORDINATE`] (NaN is not).
+#[inline(always)]
+pub(crate) fn usable(x: f32) -> bool {
+    x.abs() <= MAX_COORDINATE
+}
+
+/// What every `what` (a coordinate, a value) must be, for an `x` that is not [`usable`].
+pub(crate) fn unusable_because(x: f32, what: &str) -> String {
+    if x.is_finite() {
+        format!(
+            "every {what} must be within ±1e30, as larger ones overflow f32 in the \
+             subdivision's sums; scale them down"
+        )
+    } else {
+        format!("every {what} must be a finite number")
+    }
+}
+
 /// A polygon mesh with half-edge connectivity, stored as flat arrays.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct HalfEdgeMesh {
@@ -314,11 +338,13 @@ impl HalfEdgeMesh {
         Ok(())
     }
 
-    /// Sets the coordinates of vertex `v`. Fails on a missing vertex or a non-finite value.
+    /// Sets the coordinates of vertex `v`. Fails on a missing vertex or a non-finite or too
+    /// large value ([`MAX_COORDINATE`]).
     pub fn set_coord(&mut self, v: u32, coord: [f32; 3]) -> Result<()> {
-        if !coord.iter().all(|c| c.is_finite()) {
+        if let Some(&bad) = coord.iter().find(|&&c| !usable(c)) {
             return Err(crate::Error::mesh(format!(
-                "vertex {v}: coordinates {coord:?} are not finite; give finite numbers"
+                "vertex {v}: coordinates {coord:?}; {}",
+                unusable_because(bad, "coordinate")
             )));
         }
         let n = self.num_vertices();

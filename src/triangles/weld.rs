@@ -98,11 +98,13 @@ fn check(positions: &[f32], corners: &[u32], distance: f64) -> Result<()> {
             "{n} vertices; welding numbers vertices with 32-bit indices, below {UNUSED}"
         )));
     }
-    if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
+    if let Some(i) = positions.iter().position(|&x| !crate::mesh::usable(x)) {
+        let what = if positions[i].is_finite() { "too large" } else { "not finite" };
         return Err(Error::mesh(format!(
-            "position of vertex {} is not finite ({}); every coordinate must be a finite number",
+            "position of vertex {} is {what} ({}); {}",
             i / 3,
-            positions[i]
+            positions[i],
+            crate::mesh::unusable_because(positions[i], "coordinate")
         )));
     }
     if !corners.len().is_multiple_of(3) {

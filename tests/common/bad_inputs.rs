@@ -448,6 +448,14 @@ pub fn catalogue() -> Vec<Case> {
             &["vertex 7", "coordinate z", "-inf", "finite"],
         )
         .cli(E(&["OBJ line 8", "'-inf'", "not a finite"])),
+        // Finite, but sums of such values overflow f32 (a fuzzed OBJ file found it).
+        Case::new(
+            "too_large_coordinate",
+            cube_with(|p, _, _| p[13] = 1e38),
+            Stage::Mesh,
+            &["vertex 4", "coordinate y", "within ±1e30", "scale them down"],
+        )
+        .cli(E(&["OBJ line 5", "too large", "within ±1e30"])),
         // -- topology some schemes refuse (catmull-clark and loop take it as creases)
         Case::new(
             "non_manifold_edge_doo_sabin",
@@ -1065,6 +1073,16 @@ pub fn catalogue() -> Vec<Case> {
                 None,
             ),
             &["attribute 'w'", "value 2", "inf"],
+        ),
+        attribute_case(
+            "channel_too_large",
+            channel(
+                "w",
+                1.0,
+                JsField::Float32([vec![0.0; 3], vec![-1e35], vec![0.0; 4]].concat()),
+                None,
+            ),
+            &["attribute 'w'", "value 3", "within ±1e30"],
         ),
         attribute_case(
             "channel_unknown_field",
