@@ -120,7 +120,7 @@ export class Animator {
     this.gpuCanvas = gpuCanvas;
     this.loadSubsurf = loadSubsurf;
     this.gpu = null; // probeWebGpu()'s answer, once known
-    this.prepared = null; // { display, evaluator, rest, deformed, extent, origins, surfacePositions, surfaceNormals }
+    this.prepared = null; // { display, evaluator, rest, deformed, extent, frame, origins, surfacePositions, surfaceNormals }
     this.gpuState = null; // { evaluator, control, renderer, queries? }
     this.cpuTime = new RunningMean();
     this.gpuTime = new RunningMean();
@@ -164,6 +164,7 @@ export class Animator {
       rest: cage.positions,
       deformed: new Float32Array(cage.positions.length),
       extent: extentOf(cage.positions),
+      frame: undefined,
       origins,
       surfacePositions: origins ? new Float32Array(3 * origins.length) : null,
       surfaceNormals: origins ? new Float32Array(3 * origins.length) : null,
@@ -244,9 +245,11 @@ export class Animator {
   stepCpu() {
     const p = this.prepared;
     const started = performance.now();
-    // Views of the evaluator's output: read here, before any other call into subsurf.
-    const { positions, normals } = p.evaluator.evaluateView(p.deformed);
+    // Views of the evaluator's output, uploaded below before any other call into subsurf (one
+    // that grows wasm memory would empty them); kept as `frame` until the next one.
+    p.frame = p.evaluator.evaluateView(p.deformed);
     this.cpuTime.add(performance.now() - started);
+    const { positions, normals } = p.frame;
     let surfacePositions = positions;
     let surfaceNormals = normals ?? null;
     if (p.origins) {
