@@ -330,13 +330,24 @@ impl Evaluator {
     }
 
     /// Any vertex-varying data (colours, skin weights, a morph target's deltas) through the
-    /// positions' stencils: `width` floats per control vertex in, per output vertex out.
+    /// positions' stencils: `width` floats per control vertex in, per output vertex out. Errors
+    /// on a wrong length, and on a value that is not finite or beyond ±1e30
+    /// ([`crate::mesh::MAX_COORDINATE`]).
     pub fn evaluate_attribute(&self, values: &[f32], width: usize, out: &mut [f32]) -> Result<()> {
         let vertices = self.num_control_vertices();
         if Some(values.len()) != vertices.checked_mul(width) {
             return Err(Error::InvalidAttribute(format!(
                 "evaluateAttribute: values has {} floats; expected {width} (itemSize) for each of the {vertices} vertices of the mesh the evaluator was built from",
                 values.len()
+            )));
+        }
+        if let Some(i) = values.iter().position(|&x| !crate::mesh::usable(x)) {
+            return Err(Error::InvalidAttribute(format!(
+                "evaluateAttribute: values[{i}] (vertex {}, component {}) is {}; {}",
+                i / width,
+                i % width,
+                values[i],
+                crate::mesh::unusable_because(values[i], "value")
             )));
         }
         self.table.evaluate(values, width, out)

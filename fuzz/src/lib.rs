@@ -9,13 +9,18 @@ pub const MAX_ELEMENTS: usize = 64;
 /// The memory guard the targets use: a few thousand faces at most per execution.
 pub const MAX_FACES: u64 = 4096;
 
-/// An independent statement of what `HalfEdgeMesh::from_faces` accepts. A face may repeat a
-/// vertex (OpenSubdiv accepts such faces).
+/// An independent statement of what `HalfEdgeMesh::from_faces` accepts: coordinates within
+/// ±`MAX_COORDINATE` (so finite). A face may repeat a vertex (OpenSubdiv accepts such faces).
 pub fn is_valid(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> bool {
-    if positions.is_empty() || positions.len() % 3 != 0 {
+    is_valid_within(positions, indices, face_sizes, subsurf::mesh::MAX_COORDINATE)
+}
+
+/// [`is_valid`] with coordinates bounded by `bound` instead.
+fn is_valid_within(positions: &[f32], indices: &[u32], face_sizes: &[u32], bound: f32) -> bool {
+    if positions.is_empty() || !positions.len().is_multiple_of(3) {
         return false;
     }
-    if positions.iter().any(|x| !x.is_finite()) {
+    if positions.iter().any(|x| !(x.abs() <= bound)) {
         return false;
     }
     let vertices = positions.len() / 3;
@@ -50,10 +55,12 @@ pub fn check_result(mesh: &PolyMesh, what: &str) {
     assert!(!repeats_a_vertex(mesh), "{what}: a face of the result repeats a vertex");
 }
 
-/// A well-formed polygon mesh: what every result and every accepted OBJ file must be.
+/// A well-formed polygon mesh with finite coordinates: what every result and every accepted OBJ
+/// file must be. (A result is not held to `MAX_COORDINATE`: a rule with a negative weight may
+/// pass it a little.)
 pub fn check_poly(mesh: &PolyMesh, what: &str) {
     assert!(
-        is_valid(&mesh.positions, &mesh.indices, &mesh.face_sizes),
+        is_valid_within(&mesh.positions, &mesh.indices, &mesh.face_sizes, f32::MAX),
         "{what}: not a valid mesh: {} positions, {} indices, sizes {:?}",
         mesh.positions.len(),
         mesh.indices.len(),

@@ -173,6 +173,17 @@ fn evaluator_errors_are_clear_and_it_keeps_working() {
         &thrown(evaluator.evaluate_attribute(&positions, 0, &JsValue::UNDEFINED)),
         &["itemSize is 0"],
     );
+    assert_mentions(
+        &thrown(evaluator.evaluate_attribute(&nan, 3, &JsValue::UNDEFINED)),
+        &["evaluateAttribute: values[5] (vertex 1, component 2) is NaN", "finite"],
+    );
+    let mut huge = cube_arrays().0;
+    huge[7] = 1e35;
+    let huge: JsValue = Float32Array::from(&huge[..]).into();
+    assert_mentions(
+        &thrown(evaluator.evaluate(&huge, &JsValue::UNDEFINED)),
+        &["positions[7]", "±1e30"],
+    );
     // A failed call leaves the lent frame alone, and the evaluator works on.
     let before = f32s(&good, "positions");
     let _ = evaluator.evaluate(&short, &good);
