@@ -20,7 +20,7 @@ fn is_valid_within(positions: &[f32], indices: &[u32], face_sizes: &[u32], bound
     if positions.is_empty() || !positions.len().is_multiple_of(3) {
         return false;
     }
-    if positions.iter().any(|x| !(x.abs() <= bound)) {
+    if !positions.iter().all(|x| x.abs() <= bound) {
         return false;
     }
     let vertices = positions.len() / 3;
