@@ -33,9 +33,10 @@ impl Evaluator {
         Ok(Evaluator { inner, control: Vec::new(), positions: Vec::new(), normals: Vec::new() })
     }
 
-    /// Evaluates the frame of control `positions` into the output buffers.
-    fn frame(&mut self, positions: &JsValue) -> JsResult<()> {
-        read_f32_into(positions, "evaluate: positions", &mut self.control).map_err(js_error)?;
+    /// Evaluates the frame of control `positions` into the output buffers; errors name `call`.
+    fn frame(&mut self, positions: &JsValue, call: &str) -> JsResult<()> {
+        let field = format!("{call}: positions");
+        read_f32_into(positions, &field, &mut self.control).map_err(js_error)?;
         let outputs = 3 * self.inner.num_vertices();
         self.positions.resize(outputs, 0.0);
         let normals = if self.inner.has_normals() {
@@ -44,7 +45,13 @@ impl Evaluator {
         } else {
             None
         };
-        self.inner.evaluate(&self.control, &mut self.positions, normals).map_err(js_error)
+        // The core's messages name `evaluate`, the Rust call.
+        self.inner.evaluate(&self.control, &mut self.positions, normals).map_err(|e| match e {
+            Error::InvalidAttribute(message) => js_error(Error::InvalidAttribute(
+                message.replacen("evaluate:", &format!("{call}:"), 1),
+            )),
+            other => js_error(other),
+        })
     }
 }
 
@@ -166,7 +173,7 @@ impl Evaluator {
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] positions: &JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "EvaluatedFrame")] into: &JsValue,
     ) -> JsResult<JsValue> {
-        self.frame(positions)?;
+        self.frame(positions, "evaluate")?;
         let lent = |key: &str| -> JsValue {
             if into.is_object() {
                 Reflect::get(into, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
@@ -193,7 +200,7 @@ impl Evaluator {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "Float32Array")] positions: &JsValue,
     ) -> JsResult<JsValue> {
-        self.frame(positions)?;
+        self.frame(positions, "evaluateView")?;
         let object = Object::new();
         // SAFETY: the views are of `self`'s output buffers, which keep their place until the
         // next frame resizes them to the same length; the JS side is told above how long the

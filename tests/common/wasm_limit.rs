@@ -139,7 +139,15 @@ fn an_evaluator_view_is_its_frame_in_place() {
     assert_eq!(f32s(&view, "positions"), f32s(&next, "positions"), "written over");
     assert_ne!(f32s(&view, "positions"), f32s(&copied, "positions"));
     let short: JsValue = Float32Array::new_with_length(9).into();
-    assert_mentions(&thrown(evaluator.evaluate_view(&short)), &["has 9 floats; expected 24"]);
+    assert_mentions(
+        &thrown(evaluator.evaluate_view(&short)),
+        &["evaluateView: positions has 9 floats; expected 24"],
+    );
+    let array: JsValue = Array::of1(&1.into()).into();
+    assert_mentions(
+        &thrown(evaluator.evaluate_view(&array)),
+        &["evaluateView: positions must be a Float32Array"],
+    );
     assert_eq!(
         f32s(&ok(evaluator.evaluate_view(&frame_at(0.5))), "normals"),
         f32s(&copied, "normals")
