@@ -250,7 +250,7 @@ impl ClosedForms for RegularPatches {
                 }
                 let [b, _] = &self.basis[j];
                 let point = sums.iter().zip(b).fold(Lanes::ZERO, |s, (&x, &w)| s.add_lanes(x, w));
-                positions[v] = point.xyz();
+                point.store_xyz(&mut positions[v]);
             }
         }
     }
@@ -295,7 +295,7 @@ impl ClosedForms for RegularPatches {
                     dv = dv.add_lanes(sums[r], d[r]);
                 }
                 if let Some(position) = positions.get_mut(v) {
-                    *position = point.xyz();
+                    point.store_xyz(position);
                 }
                 normals.push(v, du, dv);
             }

@@ -582,7 +582,7 @@ impl ClosedForms for RegularRings {
         }
         self.run(control, |out, point, _| {
             // SAFETY: `out` is a case's output vertex, below `self.outputs` (`new`).
-            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+            point.store_xyz(unsafe { positions.get_unchecked_mut(out) });
         });
     }
 
@@ -600,7 +600,7 @@ impl ClosedForms for RegularRings {
         let mut normals = Normals::new(normals);
         self.run(control, |out, point, [t1, t2]| {
             // SAFETY: as in `points`.
-            unsafe { *positions.get_unchecked_mut(out) = point.xyz() };
+            point.store_xyz(unsafe { positions.get_unchecked_mut(out) });
             normals.push(out, t1, t2);
         });
     }

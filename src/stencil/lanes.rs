@@ -82,6 +82,20 @@ impl Lanes {
             f32x4_extract_lane::<2>(self.0),
         ]
     }
+
+    /// Writes the first three lanes to `out`: x and y as one 64-bit store, z as one 32-bit
+    /// store, where `xyz` takes three of each.
+    #[inline(always)]
+    pub(crate) fn store_xyz(self, out: &mut [f32; 3]) {
+        use core::arch::wasm32::{v128_store32_lane, v128_store64_lane};
+        let at = out.as_mut_ptr();
+        // SAFETY: `out` is 12 writable bytes: 8 at its start, 4 at byte 8; wasm stores need no
+        // alignment.
+        unsafe {
+            v128_store64_lane::<0>(self.0, at.cast());
+            v128_store32_lane::<2>(self.0, at.add(2).cast());
+        }
+    }
 }
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
@@ -132,6 +146,12 @@ impl Lanes {
     #[inline(always)]
     pub(crate) fn xyz(self) -> [f32; 3] {
         [self.0[0], self.0[1], self.0[2]]
+    }
+
+    /// Writes the first three lanes to `out`.
+    #[inline(always)]
+    pub(crate) fn store_xyz(self, out: &mut [f32; 3]) {
+        *out = self.xyz();
     }
 }
 
@@ -187,7 +207,7 @@ impl<'o> Normals<'o> {
             let normals = four_normals(tangents);
             for (&row, normal) in rows.iter().zip(normals).take(len - 4 * k) {
                 if let Some(out) = self.out.get_mut(row) {
-                    *out = normal;
+                    normal.store_xyz(out);
                 }
             }
         }
@@ -201,10 +221,11 @@ impl Drop for Normals<'_> {
     }
 }
 
-/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]).
+/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]), each normal in
+/// the first three lanes of its own register.
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 #[inline(always)]
-fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
     use core::arch::wasm32::*;
     // Four points' x, y and z, each in one register.
     let split = |v: [v128; 4]| {
@@ -236,27 +257,36 @@ fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
         f32x4_lt(scale2, f32x4_splat(1e30)),
     );
     if !i32x4_all_true(good) {
-        return tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()));
+        return one_at_a_time(tangents);
     }
     let inverse = f32x4_div(f32x4_splat(1.0), f32x4_sqrt(length2));
-    let [x, y, z] = [nx, ny, nz].map(|c| Lanes(mul(c, inverse)));
-    let lanes = |v: Lanes| -> [f32; 4] {
-        [
-            f32x4_extract_lane::<0>(v.0),
-            f32x4_extract_lane::<1>(v.0),
-            f32x4_extract_lane::<2>(v.0),
-            f32x4_extract_lane::<3>(v.0),
-        ]
-    };
-    let [x, y, z] = [lanes(x), lanes(y), lanes(z)];
-    std::array::from_fn(|k| [x[k], y[k], z[k]])
+    let [x, y, z] = [nx, ny, nz].map(|c| mul(c, inverse));
+    // Back to a point per register: six shuffles, where twelve lane extracts took the normals
+    // out one float at a time.
+    let (low, high) = (i32x4_shuffle::<0, 4, 1, 5>(x, y), i32x4_shuffle::<2, 6, 3, 7>(x, y));
+    [
+        i32x4_shuffle::<0, 1, 4, 4>(low, z),
+        i32x4_shuffle::<2, 3, 5, 5>(low, z),
+        i32x4_shuffle::<0, 1, 6, 6>(high, z),
+        i32x4_shuffle::<2, 3, 7, 7>(high, z),
+    ]
+    .map(Lanes)
+}
+
+/// [`crate::limit::normal`] of four tangent pairs one by one, each in the first three lanes of
+/// its own register.
+fn one_at_a_time(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
+    tangents.map(|[a, b]| {
+        let [x, y, z] = crate::limit::normal(a.xyz(), b.xyz());
+        Lanes::load(&[x, y, z, 0.0])
+    })
 }
 
 /// [`crate::limit::normal`] of four tangent pairs.
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 #[inline(always)]
-fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [[f32; 3]; 4] {
-    tangents.map(|[a, b]| crate::limit::normal(a.xyz(), b.xyz()))
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
+    one_at_a_time(tangents)
 }
 
 #[cfg(test)]

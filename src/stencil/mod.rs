@@ -388,7 +388,7 @@ impl StencilTable {
                 *b = b.add_lanes(d, w2);
             },
             |i, [p, a, b, _]| {
-                positions[i] = p.xyz();
+                p.store_xyz(&mut positions[i]);
                 normals[i] = crate::limit::normal(a.xyz(), b.xyz());
             },
         );
@@ -459,7 +459,7 @@ impl StencilTable {
 
     /// The positions of the rows `rows` names from control points padded by [`pad`].
     pub(crate) fn points(&self, control: &[[f32; 4]], rows: impl RowIds, out: &mut [[f32; 3]]) {
-        self.each_point(control, rows, |i, sum| out[i] = sum.xyz());
+        self.each_point(control, rows, |i, sum| sum.store_xyz(&mut out[i]));
     }
 
     /// Every row's point, padded as [`pad`] pads (for a table whose outputs are another sum's
