@@ -121,7 +121,8 @@ export class GpuEvaluator {
    * place). Records a compute pass into `encoder` when given (submit it yourself; the upload of
    * a Float32Array happens at the next submit, so two calls into one encoder both see the
    * later array), otherwise submits its own. Reads nothing back. Throws when the control has
-   * the wrong type or length, the device was lost, or the evaluator was destroyed.
+   * the wrong type or length, a Float32Array holds a NaN, an infinity or a value beyond ±1e30
+   * (a GPUBuffer's values are not read), the device was lost, or the evaluator was destroyed.
    */
   evaluate(control: Float32Array | GPUBufferType, encoder?: GPUCommandEncoderType): void;
   /**

@@ -167,6 +167,8 @@ export class GpuEvaluator {
    * otherwise submits its own. Nothing is read back.
    */
   evaluate(control, encoder) {
+    // (A Float32Array's values are checked as the wasm evaluator checks them; a GPUBuffer's are
+    // the caller's: reading them back would cost the frame.)
     this._checkUsable('evaluate');
     const expected = 3 * this.numControlVertices;
     let buffer;
@@ -175,6 +177,7 @@ export class GpuEvaluator {
         throw new Error(`GpuEvaluator.evaluate: control has ${control.length} floats, but this table needs ${expected} ` +
           `(x, y, z for each of its ${this.numControlVertices} base-mesh vertices); pass the base mesh's positions`);
       }
+      checkCoordinates(control);
       if (expected > 0) this.device.queue.writeBuffer(this._control, 0, control.buffer, control.byteOffset, control.byteLength);
       buffer = this._control;
     } else if (isGpuBuffer(control)) {
@@ -460,4 +463,19 @@ function describe(value) {
   if (value === undefined) return 'undefined';
   if (typeof value === 'string') return `the string ${JSON.stringify(value)}`;
   return `the ${typeof value} ${String(value)}`;
+}
+
+/** The largest coordinate the evaluators take: subsurf's `MAX_COORDINATE`, the f32 nearest 1e30 (f32 sums of larger ones overflow). */
+const MAX_COORDINATE = Math.fround(1e30);
+
+/** Throws, naming the first, on a control value that is NaN, infinite or beyond ±1e30 (the wasm evaluator's rule). */
+function checkCoordinates(control) {
+  for (let i = 0; i < control.length; i++) {
+    const x = control[i];
+    if (Math.abs(x) <= MAX_COORDINATE) continue;
+    const why = Number.isFinite(x)
+      ? 'every coordinate must be within ±1e30, as larger ones overflow f32 in the sums; scale them down'
+      : 'every coordinate must be a finite number';
+    throw new Error(`GpuEvaluator.evaluate: control[${i}] (vertex ${Math.floor(i / 3)}, ${'xyz'[i % 3]}) is ${x}; ${why}`);
+  }
 }

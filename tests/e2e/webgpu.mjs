@@ -14,7 +14,7 @@
 // (the three-binding shader); the wasm Evaluator (BaseMesh.evaluator({ levels: 2, limit: true,
 // normals: true }) on five built-in shapes, as built and twisted): GPU vs evaluator.evaluate.
 // Then the errors: bad tables, a control of the wrong length or
-// type, a destroyed evaluator, a lost device (device.destroy()), and requestGpuDevice where
+// type or with a NaN or a value beyond ±1e30, a destroyed evaluator, a lost device (device.destroy()), and requestGpuDevice where
 // navigator.gpu is missing (deleted on a secure page, and a page that is not a secure context).
 // Prints the GPU time per evaluate for 1 M output points, random and the torus at level 6 (with
 // the wasm evaluator.evaluate's for comparison; never asserted). Exits non-zero on
@@ -497,6 +497,8 @@ async function run() {
         float64: await m(() => gpu.evaluate(new Float64Array(30))),
         array: await m(() => gpu.evaluate(Array(30).fill(0))),
         missing: await m(() => gpu.evaluate()),
+        nan: await m(() => gpu.evaluate(new Float32Array(30).fill(NaN, 7, 8))),
+        huge: await m(() => gpu.evaluate(new Float32Array(30).fill(-1e35, 29))),
         noStorage: await m(() => gpu.evaluate(noStorage)),
         smallBuffer: await m(() => gpu.evaluate(small)),
         notDevice: await m(() => W.createGpuEvaluator({}, table, 10)),
@@ -545,6 +547,8 @@ async function run() {
     says('control of the wrong type (Float64Array)', errors.float64, 'Float32Array', 'got a Float64Array', 'new Float32Array');
     says('control of the wrong type (Array)', errors.array, 'Float32Array', 'got an Array');
     says('no control', errors.missing, 'must be a Float32Array', 'got undefined');
+    says('a NaN in the control', errors.nan, 'control[7] (vertex 2, y) is NaN', 'finite');
+    says('a control value beyond ±1e30', errors.huge, 'control[29] (vertex 9, z)', 'within ±1e30');
     says('control GPUBuffer without STORAGE usage', errors.noStorage, 'GPUBufferUsage.STORAGE');
     says('control GPUBuffer too small', errors.smallBuffer, '64 bytes', 'needs 120');
     says('not a device', errors.notDevice, 'must be a GPUDevice', 'requestGpuDevice');
