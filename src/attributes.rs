@@ -102,10 +102,7 @@ pub fn validate(attributes: &[Attribute], vertices: usize, corners: usize) -> Re
                 format!("{} values is not a multiple of itemSize {}", a.values.len(), a.item_size),
             ));
         }
-        // A pass without an early exit vectorizes; the place is looked for only on failure.
-        let all_usable = a.values.iter().fold(true, |ok, &x| ok & crate::mesh::usable(x));
-        let first_bad = || a.values.iter().position(|&x| !crate::mesh::usable(x));
-        if let Some(k) = (!all_usable).then(first_bad).flatten() {
+        if let Some(k) = crate::mesh::first_unusable(&a.values) {
             return Err(invalid(
                 name,
                 format!(

@@ -253,7 +253,7 @@ impl Evaluator {
                 self.num_control_vertices()
             )));
         }
-        if let Some(i) = control.iter().position(|&x| !crate::mesh::usable(x)) {
+        if let Some(i) = crate::mesh::first_unusable(control) {
             return Err(Error::InvalidAttribute(format!(
                 "evaluate: positions[{i}] (vertex {}, {}) is {}; {}",
                 i / 3,
@@ -341,7 +341,7 @@ impl Evaluator {
                 values.len()
             )));
         }
-        if let Some(i) = values.iter().position(|&x| !crate::mesh::usable(x)) {
+        if let Some(i) = crate::mesh::first_unusable(values) {
             return Err(Error::InvalidAttribute(format!(
                 "evaluateAttribute: values[{i}] (vertex {}, component {}) is {}; {}",
                 i / width,

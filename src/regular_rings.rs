@@ -339,7 +339,7 @@ impl RegularRings {
         }
         let masks = fan_masks();
         let rest = (0..outputs as u32).filter(|&v| !given[v as usize]).collect();
-        let mut rings = RegularRings {
+        let mut forms = RegularRings {
             previous,
             vertices,
             edges,
@@ -352,15 +352,15 @@ impl RegularRings {
             parent_vertices,
             outputs,
         };
-        rings.number_parents_as_read();
+        forms.number_parents_as_read();
         // The regular cases' reads as byte offsets (see `each`).
         if parent_vertices >= 1 << 28 {
             return None;
         }
         let bytes = |v: &mut u32| *v <<= 4;
-        rings.vertices.iter_mut().flat_map(|case| &mut case[..7]).for_each(bytes);
-        rings.edges.iter_mut().flat_map(|case| &mut case[..10]).for_each(bytes);
-        Some(rings)
+        forms.vertices.iter_mut().flat_map(|case| &mut case[..7]).for_each(bytes);
+        forms.edges.iter_mut().flat_map(|case| &mut case[..10]).for_each(bytes);
+        Some(forms)
     }
 
     /// When the level before is one [`Step`] after nested closed forms ([`Previous::Nested`]),

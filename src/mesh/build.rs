@@ -94,11 +94,8 @@ fn mixed_to_vertices(indices: &[u32], cell_offsets: &[u32]) -> Vec<u32> {
 
 /// Refuses a NaN, infinite or too large coordinate ([`super::MAX_COORDINATE`]), naming the
 /// first.
-pub(crate) fn check_finite(positions: &[f32]) -> Result<()> {
-    if positions.iter().fold(true, |ok, &x| ok & super::usable(x)) {
-        return Ok(());
-    }
-    let i = positions.iter().position(|&x| !super::usable(x)).unwrap_or_default();
+pub(crate) fn check_usable(positions: &[f32]) -> Result<()> {
+    let Some(i) = super::first_unusable(positions) else { return Ok(()) };
     Err(Error::mesh(format!(
         "vertex {} has coordinate {} = {}; {}",
         i / 3,
@@ -119,7 +116,7 @@ fn validate(positions: &[f32], indices: &[u32], face_sizes: &[u32]) -> Result<bo
     }
     // Whole-array checks that vectorise (no early exit) come first; only a failure pays for
     // finding the culprit.
-    check_finite(positions)?;
+    check_usable(positions)?;
     let num_vertices = positions.len() / 3;
     if num_vertices > u32::MAX as usize / 4 {
         return Err(Error::mesh(format!(

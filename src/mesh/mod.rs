@@ -42,6 +42,16 @@ pub(crate) fn usable(x: f32) -> bool {
     x.abs() <= MAX_COORDINATE
 }
 
+/// The first value of `values` that is not [`usable`]. A pass without an early exit first (it
+/// vectorizes): the place is looked for only on failure.
+pub(crate) fn first_unusable(values: &[f32]) -> Option<usize> {
+    let all_usable = values.iter().fold(true, |ok, &x| ok & usable(x));
+    if all_usable {
+        return None;
+    }
+    values.iter().position(|&x| !usable(x))
+}
+
 /// What every `what` (a coordinate, a value) must be, for an `x` that is not [`usable`].
 pub(crate) fn unusable_because(x: f32, what: &str) -> String {
     if x.is_finite() {
@@ -333,7 +343,7 @@ impl HalfEdgeMesh {
                 self.positions.len()
             )));
         }
-        build::check_finite(positions.as_flattened())?;
+        build::check_usable(positions.as_flattened())?;
         self.positions = positions;
         Ok(())
     }

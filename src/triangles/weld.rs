@@ -98,7 +98,7 @@ fn check(positions: &[f32], corners: &[u32], distance: f64) -> Result<()> {
             "{n} vertices; welding numbers vertices with 32-bit indices, below {UNUSED}"
         )));
     }
-    if let Some(i) = positions.iter().position(|&x| !crate::mesh::usable(x)) {
+    if let Some(i) = crate::mesh::first_unusable(positions) {
         let what = if positions[i].is_finite() { "too large" } else { "not finite" };
         return Err(Error::mesh(format!(
             "position of vertex {} is {what} ({}); {}",
