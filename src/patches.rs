@@ -265,7 +265,8 @@ impl ClosedForms for RegularPatches {
         positions: &mut [[f32; 3]],
         normals: &mut [[f32; 3]],
     ) {
-        let mut normals = Normals::new(normals);
+        // (A patch's points are not numbered in runs: no runs of four to look for.)
+        let mut normals = Normals::<false>::new(normals);
         for p in 0..self.controls.len() {
             let points = self.control_points(control, p);
             let origin = points[5];

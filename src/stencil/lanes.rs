@@ -164,7 +164,7 @@ impl Lanes {
 /// For the patches ([`crate::patches`]): 1.1 times faster per point there than one normal at a
 /// time. A table's rows keep one normal at a time: this measured 1.05 times slower in their
 /// loop with batches of four, and no faster with batches of 64.
-pub(crate) struct Normals<'o> {
+pub(crate) struct Normals<'o, const RUNS: bool> {
     out: &'o mut [[f32; 3]],
     rows: [usize; BATCH],
     tangents: [[Lanes; 2]; BATCH],
@@ -178,7 +178,9 @@ pub(crate) struct Normals<'o> {
 /// rather than four).
 const BATCH: usize = 64;
 
-impl<'o> Normals<'o> {
+impl<'o, const RUNS: bool> Normals<'o, RUNS> {
+    /// With `RUNS`, four normals pushed for four consecutive rows are written as one run (the
+    /// callers whose rows mostly come in order).
     pub(crate) fn new(out: &'o mut [[f32; 3]]) -> Self {
         Normals { out, rows: [0; BATCH], tangents: [[Lanes::ZERO; 2]; BATCH], len: 0 }
     }
@@ -204,28 +206,59 @@ impl<'o> Normals<'o> {
         let (tangents, _) = self.tangents[..].as_chunks::<4>();
         let (rows, _) = self.rows[..].as_chunks::<4>();
         for (k, (tangents, rows)) in tangents.iter().zip(rows).enumerate().take(len.div_ceil(4)) {
-            let normals = four_normals(tangents);
-            for (&row, normal) in rows.iter().zip(normals).take(len - 4 * k) {
-                if let Some(out) = self.out.get_mut(row) {
-                    normal.store_xyz(out);
-                }
-            }
+            let count = (len - 4 * k).min(4);
+            four_normals(tangents).store::<RUNS>(&rows[..count], self.out);
         }
         self.len = 0;
     }
 }
 
-impl Drop for Normals<'_> {
+impl<const RUNS: bool> Drop for Normals<'_, RUNS> {
     fn drop(&mut self) {
         self.flush();
     }
 }
 
-/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]), each normal in
-/// the first three lanes of its own register.
+/// Four unit normals: in lanes, x, y and z each in one register (wasm), or one by one.
+enum FourNormals {
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    Lanes([core::arch::wasm32::v128; 3]),
+    Each([Lanes; 4]),
+}
+
+impl FourNormals {
+    /// Writes the first `rows.len()` normals to their rows of `out` (rows past its end are left
+    /// out); with `RUNS`, four consecutive rows as one run.
+    #[inline(always)]
+    fn store<const RUNS: bool>(self, rows: &[usize], out: &mut [[f32; 3]]) {
+        // (Natively `Each` is the only variant.)
+        #[allow(clippy::infallible_destructuring_match)]
+        let each = match self {
+            #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+            FourNormals::Lanes(xyz) => {
+                if let (true, &[first, .., last]) = (RUNS, rows) {
+                    // Four consecutive rows: three full stores, where one per row takes two.
+                    if rows.len() == 4 && last == first + 3 && last < out.len() {
+                        store_twelve(xyz, &mut out[first..first + 4]);
+                        return;
+                    }
+                }
+                per_register(xyz)
+            }
+            FourNormals::Each(each) => each,
+        };
+        for (&row, normal) in rows.iter().zip(each) {
+            if let Some(out) = out.get_mut(row) {
+                normal.store_xyz(out);
+            }
+        }
+    }
+}
+
+/// [`crate::limit::normal`] of four tangent pairs, in lanes (see [`Normals`]).
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 #[inline(always)]
-fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> FourNormals {
     use core::arch::wasm32::*;
     // Four points' x, y and z, each in one register.
     let split = |v: [v128; 4]| {
@@ -257,12 +290,18 @@ fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
         f32x4_lt(scale2, f32x4_splat(1e30)),
     );
     if !i32x4_all_true(good) {
-        return one_at_a_time(tangents);
+        return FourNormals::Each(one_at_a_time(tangents));
     }
     let inverse = f32x4_div(f32x4_splat(1.0), f32x4_sqrt(length2));
-    let [x, y, z] = [nx, ny, nz].map(|c| mul(c, inverse));
-    // Back to a point per register: six shuffles, where twelve lane extracts took the normals
-    // out one float at a time.
+    FourNormals::Lanes([nx, ny, nz].map(|c| mul(c, inverse)))
+}
+
+/// Four normals in lanes back to a point per register: six shuffles, where twelve lane
+/// extracts took them out one float at a time.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+#[inline(always)]
+fn per_register([x, y, z]: [core::arch::wasm32::v128; 3]) -> [Lanes; 4] {
+    use core::arch::wasm32::i32x4_shuffle;
     let (low, high) = (i32x4_shuffle::<0, 4, 1, 5>(x, y), i32x4_shuffle::<2, 6, 3, 7>(x, y));
     [
         i32x4_shuffle::<0, 1, 4, 4>(low, z),
@@ -271,6 +310,27 @@ fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
         i32x4_shuffle::<2, 3, 7, 7>(high, z),
     ]
     .map(Lanes)
+}
+
+/// Four normals in lanes written to four consecutive points, 48 bytes, as three 16-byte
+/// stores of `x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3`.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+#[inline(always)]
+fn store_twelve([x, y, z]: [core::arch::wasm32::v128; 3], out: &mut [[f32; 3]]) {
+    use core::arch::wasm32::{i32x4_shuffle, v128, v128_store};
+    let (low, high) = (i32x4_shuffle::<0, 4, 1, 5>(x, y), i32x4_shuffle::<2, 6, 3, 7>(x, y));
+    let first = i32x4_shuffle::<0, 1, 4, 2>(low, z);
+    let second = i32x4_shuffle::<0, 1, 4, 5>(i32x4_shuffle::<3, 5, 3, 5>(low, z), high);
+    let third = i32x4_shuffle::<2, 6, 7, 3>(z, high);
+    let at = out.as_mut_ptr().cast::<v128>();
+    if out.len() == 4 {
+        // SAFETY: `out` is four points, 48 writable bytes; wasm stores need no alignment.
+        unsafe {
+            v128_store(at, first);
+            v128_store(at.byte_add(16), second);
+            v128_store(at.byte_add(32), third);
+        }
+    }
 }
 
 /// [`crate::limit::normal`] of four tangent pairs one by one, each in the first three lanes of
@@ -285,8 +345,8 @@ fn one_at_a_time(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
 /// [`crate::limit::normal`] of four tangent pairs.
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 #[inline(always)]
-fn four_normals(tangents: &[[Lanes; 2]; 4]) -> [Lanes; 4] {
-    one_at_a_time(tangents)
+fn four_normals(tangents: &[[Lanes; 2]; 4]) -> FourNormals {
+    FourNormals::Each(one_at_a_time(tangents))
 }
 
 #[cfg(test)]
@@ -301,36 +361,38 @@ mod tests {
     fn normals_in_batches_are_each_pairs_normal() {
         for count in [1, 3, 4, 5, BATCH - 1, BATCH, BATCH + 1, 2 * BATCH + 7] {
             let rows = count + 2;
-            let mut out = vec![[9.0f32; 3]; rows];
-            // Every third pair along one line (its normal is zero, through the f64 path), the
-            // others at varied angles and lengths.
+            // Every ninth pair along one line (its normal is zero, through the f64 path, and so
+            // are the three others of its four), the others at varied angles and lengths.
             let pair = |k: usize| {
                 let t = k as f32 * 0.37;
                 let a = [t.cos(), t.sin(), 0.25 * k as f32];
                 let b =
-                    if k.is_multiple_of(3) { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
+                    if k.is_multiple_of(9) { a.map(|x| 2.0 * x) } else { [-t.sin(), t.cos(), 1.0] };
                 (a, b)
             };
-            // Pushed in reverse row order, skipping rows 0 and 1.
-            let order: Vec<usize> = (2..rows).rev().collect();
-            {
-                let mut normals = Normals::new(&mut out);
+            // Pushed in reverse row order, skipping rows 0 and 1; and in order, where runs of
+            // four rows are written whole.
+            for order in [(2..rows).rev().collect::<Vec<usize>>(), (2..rows).collect()] {
+                let mut out = vec![[9.0f32; 3]; rows];
+                {
+                    let mut normals = Normals::<true>::new(&mut out);
+                    for (k, &row) in order.iter().enumerate() {
+                        let (a, b) = pair(k);
+                        let lanes = |v: [f32; 3]| Lanes::load(&[v[0], v[1], v[2], 0.0]);
+                        normals.push(row, lanes(a), lanes(b));
+                    }
+                }
+                assert_eq!(out[0], [9.0; 3], "count {count}");
+                assert_eq!(out[1], [9.0; 3], "count {count}");
                 for (k, &row) in order.iter().enumerate() {
                     let (a, b) = pair(k);
-                    let lanes = |v: [f32; 3]| Lanes::load(&[v[0], v[1], v[2], 0.0]);
-                    normals.push(row, lanes(a), lanes(b));
+                    let expected = crate::limit::normal(a, b);
+                    assert_eq!(
+                        out[row].map(f32::to_bits),
+                        expected.map(f32::to_bits),
+                        "count {count}, pair {k}"
+                    );
                 }
-            }
-            assert_eq!(out[0], [9.0; 3], "count {count}");
-            assert_eq!(out[1], [9.0; 3], "count {count}");
-            for (k, &row) in order.iter().enumerate() {
-                let (a, b) = pair(k);
-                let expected = crate::limit::normal(a, b);
-                assert_eq!(
-                    out[row].map(f32::to_bits),
-                    expected.map(f32::to_bits),
-                    "count {count}, pair {k}"
-                );
             }
         }
     }
