@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
+use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
@@ -52,6 +53,9 @@ pub struct Evaluator {
     /// Loop limit points whose level before is regular, in closed form from that level's
     /// points (see `crate::regular_rings`); the table's rows give the others.
     rings: Option<RegularRings>,
+    /// Catmull-Clark limit points on a closed cage that no patch covers, from the last level's
+    /// points by the masks (see `crate::quad_rings`); then they give every point.
+    quads: Option<QuadRings>,
     /// The weights of the rows a frame reads, each distinct list once, when the table has
     /// tangents (see `crate::shared_weights`).
     shared: Option<SharedWeights>,
@@ -106,6 +110,17 @@ impl Evaluator {
                 build.table.bytes(),
             )
         };
+        // A closed cage without regular faces (a triangle cage: the horse, most glTF models):
+        // the last level by Catmull and Clark's rules, and its limit masks. (OpenSubdiv's
+        // smooth-triangle rule weights a triangle's edge points otherwise.)
+        let quads = match (&patches, options.max_bytes.checked_sub(build.table.bytes())) {
+            (None, Some(budget)) if patchable && !tags.smooth_triangles => {
+                let outputs = build.table.num_stencils();
+                QuadRings::new(base, options.levels(), &build.mesh, outputs)
+                    .filter(|quads| quads.bytes() <= budget)
+            }
+            _ => None,
+        };
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,
             (true, true) => NormalSource::Tangents,
@@ -124,7 +139,8 @@ impl Evaluator {
         }
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
-                let rows: Vec<usize> = match closed_forms(&patches, &rings).map(|c| c.rest()) {
+                let closed = closed_forms(&patches, &rings, &quads);
+                let rows: Vec<usize> = match closed.map(|c| c.rest()) {
                     Some(rest) => rest.iter().map(|&r| r as usize).collect(),
                     None => (0..build.table.num_stencils()).collect(),
                 };
@@ -142,6 +158,7 @@ impl Evaluator {
             source,
             patches,
             rings,
+            quads,
             shared,
         })
     }
@@ -216,19 +233,24 @@ impl Evaluator {
         self.patches.as_ref().map_or(0, RegularPatches::num_points)
     }
 
-    /// How many output vertices [`Evaluator::evaluate`] computes in closed form from the level
-    /// before the last rather than from their stencil rows: Loop at the limit without tags, the
-    /// children of regular vertices (valence 6, interior) and of edges between two (see
-    /// `crate::regular_rings`). Same positions and normals to f32 rounding.
+    /// How many output vertices [`Evaluator::evaluate`] computes in closed form rather than
+    /// from their stencil rows: Loop at the limit without tags, from the level before the last,
+    /// the children of regular vertices (valence 6, interior) and of edges between two (see
+    /// `crate::regular_rings`); Catmull-Clark at the limit without tags on a closed cage that
+    /// no patch covers (a triangle cage), every vertex, from the last level made by the rules
+    /// (see `crate::quad_rings`). Same positions and normals to f32 rounding.
     pub fn ring_vertices(&self) -> usize {
-        self.rings.as_ref().map_or(0, RegularRings::num_points)
+        let quads = self.quads.as_ref().map_or(0, QuadRings::num_points);
+        self.rings.as_ref().map_or(quads, RegularRings::num_points)
     }
 
-    /// Bytes of what a frame reads besides its input: the table, and for Loop's closed forms
-    /// ([`Evaluator::ring_vertices`]) the level before's own table and the cases (indices of
-    /// the points each reads), which `options.max_bytes` bounds with the table.
+    /// Bytes of what a frame reads besides its input: the table, and for the closed forms
+    /// ([`Evaluator::ring_vertices`]) the levels' topology or the level before's own table and
+    /// the cases (indices of the points each reads), which `options.max_bytes` bounds with the
+    /// table.
     pub fn bytes(&self) -> u64 {
-        self.table.bytes() + self.rings.as_ref().map_or(0, RegularRings::bytes)
+        let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
+        self.table.bytes() + self.rings.as_ref().map_or(quads, RegularRings::bytes)
     }
 
     /// Number of output vertices.
@@ -284,7 +306,7 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        if let Some(closed) = closed_forms(&self.patches, &self.rings) {
+        if let Some(closed) = closed_forms(&self.patches, &self.rings, &self.quads) {
             // The rows of the points no closed form gives, then the closed forms.
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
@@ -359,11 +381,13 @@ impl Evaluator {
 fn closed_forms<'a>(
     patches: &'a Option<RegularPatches>,
     rings: &'a Option<RegularRings>,
+    quads: &'a Option<QuadRings>,
 ) -> Option<&'a dyn ClosedForms> {
-    match (patches, rings) {
-        (Some(patches), _) => Some(patches),
-        (None, Some(rings)) => Some(rings),
-        (None, None) => None,
+    match (patches, rings, quads) {
+        (Some(patches), _, _) => Some(patches),
+        (None, Some(rings), _) => Some(rings),
+        (None, None, Some(quads)) => Some(quads),
+        (None, None, None) => None,
     }
 }
 

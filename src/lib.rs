@@ -34,6 +34,7 @@ pub mod options;
 mod patches;
 pub mod predict;
 pub mod primvar;
+mod quad_rings;
 pub mod refine;
 pub mod refined;
 mod regular_rings;

@@ -504,3 +504,55 @@ fn loops_closed_forms_equal_the_tables_rows() {
     }
     assert!(compared > 10_000, "only {compared} points");
 }
+
+/// Catmull-Clark's limit on a closed cage that no patch covers (`crate::quad_rings`: the
+/// levels by Catmull and Clark's rules each frame, then the limit masks on the last level's
+/// rings) gives what the table's own rows give, at levels 1 to 3 with and without normals: on
+/// triangle cages (an icosahedron, valence 5; a torus of valence-6 triangles with some made 5
+/// and 7 by flipped diagonals), a cube (valence 3) and a dodecahedron (pentagons). Every point
+/// then comes from the masks.
+#[test]
+fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
+    let mut flipped = torus_triangles(9, 8, 1.0, 0.35);
+    for quad in (0..flipped.indices.len() / 6).step_by(3) {
+        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
+        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
+        if t[3] == a && t[4] == c {
+            t.copy_from_slice(&[a, b, d, b, c, d]);
+        }
+    }
+    let meshes = [
+        ("icosahedron", icosahedron()),
+        ("flipped torus", flipped),
+        ("cube", subsurf::shapes::cube()),
+        ("dodecahedron", subsurf::shapes::dodecahedron()),
+    ];
+    let mut compared = 0;
+    for (name, mesh) in meshes {
+        let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        let control = deform(&mesh.positions, 0.6);
+        for levels in 1..=3 {
+            for normals in [false, true] {
+                let options = options(Scheme::CatmullClark, levels, true, normals);
+                let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+                let what = format!("{name}, level {levels}, normals {normals}");
+                let n = evaluator.num_vertices();
+                assert_eq!(evaluator.patch_vertices(), 0, "{what}: no patch");
+                assert_eq!(evaluator.ring_vertices(), n, "{what}: every point from the masks");
+                let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+                evaluator
+                    .evaluate(&control, &mut positions, normals.then_some(&mut got_normals))
+                    .unwrap();
+                let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+                let table = evaluator.table();
+                table.evaluate_with_normals(&control, &mut rows, &mut row_normals).unwrap();
+                assert_close(&positions, &rows, 1e-5 * diagonal(&rows), &what);
+                if normals {
+                    assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
+                }
+                compared += n;
+            }
+        }
+    }
+    assert!(compared > 10_000, "only {compared} points");
+}

@@ -128,11 +128,17 @@ impl Angles {
             let a = theta * i as f64;
             [a.cos(), a.sin()]
         });
-        // λ, Catmull-Clark's subdominant eigenvalue at valence n.
-        let lambda = 5.0 / 16.0
-            + (theta.cos() + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt()) / 16.0;
-        (angles.collect(), 1.0 / (4.0 * lambda - 1.0))
+        (angles.collect(), catmull_clark_face_scale(n))
     }
+}
+
+/// The scale `1/(4λ - 1)` of Catmull-Clark's smooth tangent weights on the faces' opposite
+/// corners at valence `n`, `λ` the scheme's subdominant eigenvalue there.
+pub(crate) fn catmull_clark_face_scale(n: usize) -> f64 {
+    let theta = std::f64::consts::TAU / n as f64;
+    let lambda = 5.0 / 16.0
+        + (theta.cos() + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt()) / 16.0;
+    1.0 / (4.0 * lambda - 1.0)
 }
 
 /// The limit masks of Catmull-Clark or Loop on one level (see the module docs): `tags` is the

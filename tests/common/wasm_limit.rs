@@ -231,20 +231,25 @@ fn an_evaluator_on_regular_faces_gives_subdivide() {
     }
 }
 
-/// Loop's closed forms (the level before's regular vertices and edges, the fans of the others,
-/// and from level 3 the nested level) and their normals, written in runs of four in wasm: a
-/// frame equals `subdivide` at levels 1 to 3 on closed triangle meshes, one of valence 6
-/// everywhere and one of valence 5 everywhere.
+/// The closed forms of a triangle cage, in wasm: Loop's (the level before's regular vertices
+/// and edges, the fans of the others, and from level 3 the nested level) and Catmull-Clark's
+/// (the last level by the rules, then its limit masks), with their normals written in runs of
+/// four. A frame equals `subdivide` at levels 1 to 3 on closed triangle meshes, one of valence
+/// 6 everywhere and one of valence 5 everywhere.
 #[wasm_bindgen_test]
-fn a_loop_evaluator_on_closed_triangles_gives_subdivide() {
+fn evaluators_on_closed_triangle_cages_give_subdivide() {
     let shapes =
         [subsurf::shapes::torus_triangles(12, 9, 2.0, 0.5), subsurf::shapes::icosahedron()];
     for shape in shapes {
         let mesh = js_mesh(&shape.positions, &shape.indices, Some(&shape.face_sizes));
         let base = BaseMesh::new(&mesh).unwrap();
-        for levels in [1.0, 2.0, 3.0] {
+        for (scheme, levels) in [1.0, 2.0, 3.0]
+            .map(|l| ("loop", l))
+            .into_iter()
+            .chain([1.0, 2.0, 3.0].map(|l| ("catmull-clark", l)))
+        {
             let options = limit_options(levels, true, true);
-            Reflect::set(&options, &"scheme".into(), &"loop".into()).unwrap();
+            Reflect::set(&options, &"scheme".into(), &scheme.into()).unwrap();
             let mut evaluator = base.evaluator(&options).unwrap();
             let moved = twisted(&shape.positions, 0.7);
             let frame =
@@ -255,7 +260,7 @@ fn a_loop_evaluator_on_closed_triangles_gives_subdivide() {
                 let (got, want) = (f32s(&frame, key), f32s(&want, key));
                 assert!(
                     within(&got, &want, tolerance),
-                    "{key}, {} faces, level {levels}",
+                    "{scheme} {key}, {} faces, level {levels}",
                     shape.face_sizes.len()
                 );
             }

@@ -1,0 +1,382 @@
+//! Catmull-Clark's limit points and normals on a closed cage, from the last level's own points:
+//! what [`crate::regular_rings`] does for Loop, for the cages the bicubic patches
+//! ([`crate::patches`]) do not cover. A triangle cage (the horse, most glTF models) has no
+//! regular face before level 2, so none of its limit points comes from a patch.
+//!
+//! Each frame makes every level's points by Catmull and Clark's smooth rules ([`QuadStep`],
+//! numbered as `refine::pqq` numbers them: vertex points, face points, edge points), then
+//! applies the limit masks of `rules::limit` (OpenSubdiv's `ComputeVertexLimitMask`) to each
+//! vertex of the last level on its ring there. At valence 4, with `e_i` its neighbours and
+//! `f_i` its faces' opposite corners counter-clockwise,
+//!
+//! ```text
+//! P = (16v + 4 Σe + Σf) / 36,   t1 = 4(e0 - e2) + f0 - f1 - f2 + f3,   t2 = 4(e1 - e3) + f0 + f1 - f2 - f3,
+//! ```
+//!
+//! OpenSubdiv's `tan1` and `tan2` there; at other valences the masks' weights are tabled per
+//! valence. Why: a limit row of the horse at level 2 reads some 20 control points with three
+//! weights each; a step reads about 5 points per point it makes, and a mask 9 at valence 4.
+//! The table's rows stay whole, for `stencils()` and the GPU.
+
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::stencil::{ClosedForms, Lanes, Normals};
+
+/// Past this many faces a vertex keeps the cage on its rows.
+const MAX_VALENCE: usize = 64;
+
+/// Catmull-Clark's limit on a closed cage: the levels' steps, and the last level's rings.
+#[derive(Clone, Debug)]
+pub(crate) struct QuadRings {
+    /// Level `k + 1`'s points from level `k`'s, for every level.
+    steps: Vec<QuadStep>,
+    /// The last level's vertices of valence 4: `[v, e0, f0, e1, f1, e2, f2, e3, f3]`.
+    regular: Vec<[u32; 9]>,
+    /// Its other vertices, each with its ring in `rings`.
+    others: Vec<u32>,
+    rings: Rings,
+    /// Per valence (up to [`MAX_VALENCE`]), the limit masks' weights.
+    masks: Vec<LimitMasks>,
+    outputs: usize,
+}
+
+/// One level of Catmull and Clark's smooth rules on a closed cage whose every vertex has a
+/// closed fan of 3 to [`MAX_VALENCE`] faces, in the order `refine::pqq` numbers the child level.
+#[derive(Clone, Debug)]
+struct QuadStep {
+    /// `corners[cell_offsets[c]..cell_offsets[c + 1]]` are cell `c`'s corners.
+    cell_offsets: Vec<u32>,
+    corners: Vec<u32>,
+    /// Per vertex, `around[vertex_offsets[v]..vertex_offsets[v + 1]]`: per incident face, the
+    /// neighbour that follows `v` in it and the face.
+    vertex_offsets: Vec<u32>,
+    around: Vec<[u32; 2]>,
+    /// Per edge, its ends and its two faces.
+    edges: Vec<[u32; 4]>,
+}
+
+impl QuadStep {
+    fn new(mesh: &HalfEdgeMesh) -> Option<Self> {
+        if !mesh.has_simple_edges() || mesh.is_non_manifold() {
+            return None;
+        }
+        let corners = mesh.he_from.clone();
+        let mut cell_offsets = Vec::with_capacity(mesh.num_cells() + 1);
+        cell_offsets.push(0);
+        for c in 0..mesh.num_cells() {
+            cell_offsets.push(mesh.cell_range(c).end as u32);
+        }
+        let edges = (0..mesh.num_edges())
+            .map(|e| match mesh.edge_half_edges[mesh.edge_range(e)] {
+                [h, twin] => {
+                    let [a, b] = mesh.edge_vertices[e];
+                    Some([a, b, mesh.cell_of(h), mesh.cell_of(twin)])
+                }
+                _ => None,
+            })
+            .collect::<Option<Vec<_>>>()?;
+        let mut vertex_offsets = Vec::with_capacity(mesh.num_vertices() + 1);
+        let mut around = Vec::with_capacity(mesh.num_half_edges());
+        vertex_offsets.push(0);
+        for v in 0..mesh.num_vertices() as u32 {
+            let out = mesh.out_half_edges(v);
+            if !(3..=MAX_VALENCE).contains(&out.len()) {
+                return None;
+            }
+            let next = |h: u32| corners[mesh.next_in_cell(h) as usize];
+            around.extend(out.iter().map(|&h| [next(h), mesh.cell_of(h)]));
+            vertex_offsets.push(around.len() as u32);
+        }
+        Some(QuadStep { cell_offsets, corners, vertex_offsets, around, edges })
+    }
+
+    fn bytes(&self) -> u64 {
+        let lists = std::mem::size_of_val(&self.cell_offsets[..])
+            + std::mem::size_of_val(&self.corners[..])
+            + std::mem::size_of_val(&self.vertex_offsets[..])
+            + std::mem::size_of_val(&self.around[..])
+            + std::mem::size_of_val(&self.edges[..]);
+        lists as u64
+    }
+
+    /// The child level's points from `points` (this level's, padded).
+    fn apply(&self, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
+        let vertices = self.vertex_offsets.len() - 1;
+        let cells = self.cell_offsets.len() - 1;
+        let mut out = Vec::with_capacity(vertices + cells + self.edges.len());
+        if points.len() < vertices {
+            return out;
+        }
+        // SAFETY: the corners, the neighbours and the edges' ends are vertices of the mesh the
+        // step was made from (`QuadStep::new`), so below `points.len()`; the faces are its
+        // cells, below `faces.len()`. As in `regular_rings`, the checks are a good part of
+        // these loops in wasm.
+        let at = |i: u32| {
+            debug_assert!((i as usize) < points.len());
+            Lanes::load(unsafe { points.get_unchecked(i as usize) })
+        };
+        let faces: Vec<[f32; 4]> = match self.corners.as_chunks::<4>() {
+            (quads, []) if quads.len() == cells => quads
+                .iter()
+                .map(|&[a, b, c, d]| at(a).add(at(b)).add(at(c).add(at(d))).scale(0.25).xyzw())
+                .collect(),
+            _ => (self.cell_offsets.windows(2))
+                .map(|span| {
+                    let corners = &self.corners[span[0] as usize..span[1] as usize];
+                    let sum = corners.iter().fold(Lanes::ZERO, |sum, &v| sum.add(at(v)));
+                    sum.scale(1.0 / corners.len() as f32).xyzw()
+                })
+                .collect(),
+        };
+        let face = |c: u32| {
+            debug_assert!((c as usize) < faces.len());
+            Lanes::load(unsafe { faces.get_unchecked(c as usize) })
+        };
+        out.extend(self.vertex_offsets.windows(2).enumerate().map(|(v, span)| {
+            // `v + (Σ (e_i - v) + Σ (F_i - v)) / n²`: Catmull and Clark's vertex rule,
+            // `(n - 2)/n v + (Σ e_i + Σ F_i) / n²`, on differences.
+            let centre = at(v as u32);
+            let around = &self.around[span[0] as usize..span[1] as usize];
+            let sum = around.iter().fold(Lanes::ZERO, |sum, &[q, c]| {
+                sum.add(at(q).sub(centre)).add(face(c).sub(centre))
+            });
+            let n = around.len() as f32;
+            centre.add_lanes(sum, 1.0 / (n * n)).xyzw()
+        }));
+        out.extend_from_slice(&faces);
+        out.extend(self.edges.iter().map(|&[a, b, c0, c1]| {
+            at(a).add(at(b)).add(face(c0).add(face(c1))).scale(0.25).xyzw()
+        }));
+        out
+    }
+}
+
+/// The limit masks of a smooth Catmull-Clark vertex of one valence `n` (`rules::limit`): the
+/// position's weight on each neighbour and on each face's opposite corner (differences from
+/// the vertex), and the two tangents' weights on each.
+#[derive(Clone, Debug, Default)]
+struct LimitMasks {
+    edge: f32,
+    face: f32,
+    /// Per `i`: `[first, second]` on `e_i`, then on `f_i`.
+    tangents: Vec<[[f32; 2]; 2]>,
+}
+
+impl LimitMasks {
+    fn new(n: usize) -> Self {
+        let face = 1.0 / (n as f64 * (n as f64 + 5.0));
+        let cos = |i: usize| {
+            if n == 4 {
+                [1.0, 0.0, -1.0, 0.0][i % 4]
+            } else {
+                (std::f64::consts::TAU * (i % n) as f64 / n as f64).cos()
+            }
+        };
+        let scale = if n == 4 { 1.0 } else { crate::rules::limit::catmull_clark_face_scale(n) };
+        let tangents = (0..n)
+            .map(|i| {
+                let before = i + n - 1;
+                let on_edge = [4.0 * cos(i), 4.0 * cos(before)];
+                let on_face = [scale * (cos(i) + cos(i + 1)), scale * (cos(before) + cos(i))];
+                [on_edge.map(|w| w as f32), on_face.map(|w| w as f32)]
+            })
+            .collect();
+        LimitMasks { edge: (4.0 * face) as f32, face: face as f32, tangents }
+    }
+}
+
+impl QuadRings {
+    /// Catmull-Clark's limit on `levels` levels of `base` (every level Catmull-Clark's, no
+    /// tags) whose last level is the quads `faces` on `outputs` vertices, numbered as
+    /// `refine::pqq` numbers them; `None` unless `base` is a closed cage whose every vertex
+    /// has a closed fan of 3 to [`MAX_VALENCE`] faces.
+    pub(crate) fn new(
+        base: &HalfEdgeMesh,
+        levels: usize,
+        faces: &PolyMesh,
+        outputs: usize,
+    ) -> Option<Self> {
+        if levels == 0 || faces.face_sizes.iter().any(|&n| n != 4) {
+            return None;
+        }
+        let mut steps = Vec::with_capacity(levels);
+        let mut mesh = std::borrow::Cow::Borrowed(base);
+        for level in 0..levels {
+            steps.push(QuadStep::new(&mesh)?);
+            if level + 1 < levels {
+                let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(&mesh)];
+                mesh = std::borrow::Cow::Owned(crate::refine::pqq::child_mesh(&mesh, zeros));
+            }
+        }
+        let made = steps.last().map(|s| s.vertex_offsets.len() + s.cell_offsets.len() - 2);
+        if made.map(|m| m + steps.last().map_or(0, |s| s.edges.len())) != Some(outputs) {
+            return None;
+        }
+        let rings = Rings::new(faces.indices.as_chunks::<4>().0, outputs)?;
+        let (mut regular, mut others) = (Vec::new(), Vec::new());
+        for v in 0..outputs as u32 {
+            match *rings.of(v)? {
+                [e0, f0, e1, f1, e2, f2, e3, f3] => {
+                    regular.push([v, e0, f0, e1, f1, e2, f2, e3, f3])
+                }
+                _ => others.push(v),
+            }
+        }
+        let masks = (0..=MAX_VALENCE)
+            .map(|n| if n >= 3 { LimitMasks::new(n) } else { LimitMasks::default() })
+            .collect();
+        Some(QuadRings { steps, regular, others, rings, masks, outputs })
+    }
+
+    /// Number of output vertices they give: all of them.
+    pub(crate) fn num_points(&self) -> usize {
+        self.outputs
+    }
+
+    /// What this adds to the table's bytes: the steps, the rings and the cases.
+    pub(crate) fn bytes(&self) -> u64 {
+        let cases =
+            std::mem::size_of_val(&self.regular[..]) + std::mem::size_of_val(&self.others[..]);
+        self.steps.iter().map(QuadStep::bytes).sum::<u64>() + self.rings.bytes() + cases as u64
+    }
+
+    /// Each output vertex's limit point and tangents, from the padded control points.
+    fn each(&self, control: &[[f32; 4]], mut emit: impl FnMut(usize, Lanes, [Lanes; 2])) {
+        let mut points = std::borrow::Cow::Borrowed(control);
+        for step in &self.steps {
+            points = step.apply(&points).into();
+        }
+        if points.len() < self.outputs {
+            return;
+        }
+        // SAFETY: the rings hold vertices below `self.outputs` (`Rings::new` checked each), so
+        // below `points.len()`.
+        let at = |i: u32| {
+            debug_assert!((i as usize) < points.len());
+            Lanes::load(unsafe { points.get_unchecked(i as usize) })
+        };
+        for case in &self.regular {
+            let [v, e0, f0, e1, f1, e2, f2, e3, f3] = case.map(at);
+            let edges = e0.add(e1).add(e2.add(e3));
+            let faces = f0.add(f1).add(f2.add(f3));
+            let point = faces.add_lanes(edges, 4.0).add_lanes(v, 16.0).scale(1.0 / 36.0);
+            let (f03, f12) = (f0.sub(f2), f1.sub(f3));
+            let t1 = f03.sub(f12).add_lanes(e0.sub(e2), 4.0);
+            let t2 = f03.add(f12).add_lanes(e1.sub(e3), 4.0);
+            emit(case[0] as usize, point, [t1, t2]);
+        }
+        for &v in &self.others {
+            let (centre, ring) = (at(v), self.rings.of(v).unwrap_or(&[]));
+            let Some(m) = self.masks.get(ring.len() / 2) else { continue };
+            let (mut edges, mut faces) = (Lanes::ZERO, Lanes::ZERO);
+            let (mut t1, mut t2) = (Lanes::ZERO, Lanes::ZERO);
+            for (pair, [on_edge, on_face]) in ring.as_chunks::<2>().0.iter().zip(&m.tangents) {
+                let (e, f) = (at(pair[0]).sub(centre), at(pair[1]).sub(centre));
+                edges = edges.add(e);
+                faces = faces.add(f);
+                t1 = t1.add_lanes(e, on_edge[0]).add_lanes(f, on_face[0]);
+                t2 = t2.add_lanes(e, on_edge[1]).add_lanes(f, on_face[1]);
+            }
+            let point = centre.add_lanes(faces, m.face).add_lanes(edges, m.edge);
+            emit(v as usize, point, [t1, t2]);
+        }
+    }
+}
+
+impl ClosedForms for QuadRings {
+    fn rest(&self) -> &[u32] {
+        &[]
+    }
+
+    fn points(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
+        self.each(control, |out, point, _| {
+            if let Some(position) = positions.get_mut(out) {
+                point.store_xyz(position);
+            }
+        });
+    }
+
+    fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        normals: &mut [[f32; 3]],
+    ) {
+        // The vertices come in order, in two runs: their normals mostly in runs of four.
+        let mut normals = Normals::<true>::new(normals);
+        self.each(control, |out, point, [t1, t2]| {
+            if let Some(position) = positions.get_mut(out) {
+                point.store_xyz(position);
+            }
+            normals.push(out, t1, t2);
+        });
+    }
+}
+
+/// The rings of a quad mesh's vertices with a closed fan (3 to [`MAX_VALENCE`] quads around),
+/// counter-clockwise as the quads are wound: per quad `i`, the neighbour `e_i` it shares with
+/// the quad before and its corner `f_i` opposite the vertex, `[e0, f0, e1, f1, ...]`.
+#[derive(Clone, Debug)]
+struct Rings {
+    /// `list[offsets[v]..offsets[v + 1]]` is `v`'s ring, empty when it has none.
+    offsets: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Rings {
+    fn new(quads: &[[u32; 4]], vertices: usize) -> Option<Self> {
+        // Each corner's (next, opposite, previous) vertex, grouped by vertex: the fan's steps.
+        let mut offsets = vec![0u32; vertices + 1];
+        for &v in quads.as_flattened() {
+            *offsets.get_mut(v as usize + 1)? += 1;
+        }
+        for v in 1..offsets.len() {
+            offsets[v] += offsets[v - 1];
+        }
+        let mut fill = offsets.clone();
+        let mut steps = vec![[0u32; 3]; 4 * quads.len()];
+        for &[a, b, c, d] in quads {
+            for (v, step) in [(a, [b, c, d]), (b, [c, d, a]), (c, [d, a, b]), (d, [a, b, c])] {
+                let slot = &mut fill[v as usize];
+                steps[*slot as usize] = step;
+                *slot += 1;
+            }
+        }
+        let (mut ring_offsets, mut list) = (Vec::with_capacity(vertices + 1), Vec::new());
+        ring_offsets.push(0);
+        let mut ring = Vec::new();
+        for v in 0..vertices {
+            let fan = &steps[offsets[v] as usize..offsets[v + 1] as usize];
+            if (3..=MAX_VALENCE).contains(&fan.len()) && closed_ring(fan, v as u32, &mut ring) {
+                list.extend_from_slice(&ring);
+            }
+            ring_offsets.push(list.len() as u32);
+        }
+        Some(Rings { offsets: ring_offsets, list })
+    }
+
+    fn bytes(&self) -> u64 {
+        (std::mem::size_of_val(&self.offsets[..]) + std::mem::size_of_val(&self.list[..])) as u64
+    }
+
+    /// The ring of `v`, when it has one.
+    fn of(&self, v: u32) -> Option<&[u32]> {
+        let (start, end) = (*self.offsets.get(v as usize)?, *self.offsets.get(v as usize + 1)?);
+        (end > start).then(|| &self.list[start as usize..end as usize])
+    }
+}
+
+/// Whether the fan steps `fan` (next, opposite, previous) of vertex `v` close into one ring of
+/// distinct vertices other than `v`, left in `ring` as `[e0, f0, e1, f1, ...]`.
+fn closed_ring(fan: &[[u32; 3]], v: u32, ring: &mut Vec<u32>) -> bool {
+    ring.clear();
+    let mut step = fan[0];
+    for _ in 0..fan.len() {
+        ring.extend_from_slice(&step[..2]);
+        // The quad after this one, counter-clockwise, starts at this one's previous corner.
+        let Some(&next) = fan.iter().find(|s| s[0] == step[2]) else { return false };
+        step = next;
+    }
+    let closes = step == fan[0];
+    let distinct = (0..ring.len()).all(|i| !ring[i + 1..].contains(&ring[i]));
+    closes && !ring.contains(&v) && distinct
+}
