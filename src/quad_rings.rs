@@ -19,17 +19,17 @@
 //! The table's rows stay whole, for `stencils()` and the GPU.
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
+use crate::regular_rings::{Rings, MAX_VALENCE};
 use crate::stencil::{ClosedForms, Lanes, Normals};
-
-/// Past this many faces a vertex keeps the cage on its rows.
-const MAX_VALENCE: usize = 64;
 
 /// Catmull-Clark's limit on a closed cage: the levels' steps, and the last level's rings.
 #[derive(Clone, Debug)]
 pub(crate) struct QuadRings {
     /// Level `k + 1`'s points from level `k`'s, for every level.
     steps: Vec<QuadStep>,
-    /// The last level's vertices of valence 4: `[v, e0, f0, e1, f1, e2, f2, e3, f3]`.
+    /// The last level's vertices of valence 4: `[v, e0, f0, e1, f1, e2, f2, e3, f3]`, the
+    /// ring as `rings` holds it (per quad `i` counter-clockwise, the neighbour `e_i` it shares
+    /// with the quad before and its corner `f_i` opposite the vertex).
     regular: Vec<[u32; 9]>,
     /// Its other vertices, each with its ring in `rings`.
     others: Vec<u32>,
@@ -211,7 +211,12 @@ impl QuadRings {
         if made.map(|m| m + steps.last().map_or(0, |s| s.edges.len())) != Some(outputs) {
             return None;
         }
-        let rings = Rings::new(faces.indices.as_chunks::<4>().0, outputs)?;
+        // Each corner's (next, opposite, previous) vertex: the fan's steps.
+        let fan_steps = |[a, b, c, d]: [u32; 4]| {
+            [(a, [b, c, d]), (b, [c, d, a]), (c, [d, a, b]), (d, [a, b, c])]
+        };
+        let quads = faces.indices.as_chunks::<4>().0;
+        let rings = Rings::of_fans(quads, outputs, fan_steps, closed_ring)?;
         let (mut regular, mut others) = (Vec::new(), Vec::new());
         for v in 0..outputs as u32 {
             match *rings.of(v)? {
@@ -309,59 +314,6 @@ impl ClosedForms for QuadRings {
             }
             normals.push(out, t1, t2);
         });
-    }
-}
-
-/// The rings of a quad mesh's vertices with a closed fan (3 to [`MAX_VALENCE`] quads around),
-/// counter-clockwise as the quads are wound: per quad `i`, the neighbour `e_i` it shares with
-/// the quad before and its corner `f_i` opposite the vertex, `[e0, f0, e1, f1, ...]`.
-#[derive(Clone, Debug)]
-struct Rings {
-    /// `list[offsets[v]..offsets[v + 1]]` is `v`'s ring, empty when it has none.
-    offsets: Vec<u32>,
-    list: Vec<u32>,
-}
-
-impl Rings {
-    fn new(quads: &[[u32; 4]], vertices: usize) -> Option<Self> {
-        // Each corner's (next, opposite, previous) vertex, grouped by vertex: the fan's steps.
-        let mut offsets = vec![0u32; vertices + 1];
-        for &v in quads.as_flattened() {
-            *offsets.get_mut(v as usize + 1)? += 1;
-        }
-        for v in 1..offsets.len() {
-            offsets[v] += offsets[v - 1];
-        }
-        let mut fill = offsets.clone();
-        let mut steps = vec![[0u32; 3]; 4 * quads.len()];
-        for &[a, b, c, d] in quads {
-            for (v, step) in [(a, [b, c, d]), (b, [c, d, a]), (c, [d, a, b]), (d, [a, b, c])] {
-                let slot = &mut fill[v as usize];
-                steps[*slot as usize] = step;
-                *slot += 1;
-            }
-        }
-        let (mut ring_offsets, mut list) = (Vec::with_capacity(vertices + 1), Vec::new());
-        ring_offsets.push(0);
-        let mut ring = Vec::new();
-        for v in 0..vertices {
-            let fan = &steps[offsets[v] as usize..offsets[v + 1] as usize];
-            if (3..=MAX_VALENCE).contains(&fan.len()) && closed_ring(fan, v as u32, &mut ring) {
-                list.extend_from_slice(&ring);
-            }
-            ring_offsets.push(list.len() as u32);
-        }
-        Some(Rings { offsets: ring_offsets, list })
-    }
-
-    fn bytes(&self) -> u64 {
-        (std::mem::size_of_val(&self.offsets[..]) + std::mem::size_of_val(&self.list[..])) as u64
-    }
-
-    /// The ring of `v`, when it has one.
-    fn of(&self, v: u32) -> Option<&[u32]> {
-        let (start, end) = (*self.offsets.get(v as usize)?, *self.offsets.get(v as usize + 1)?);
-        (end > start).then(|| &self.list[start as usize..end as usize])
     }
 }
 

@@ -48,7 +48,7 @@ type EdgeCase = [u32; 11];
 type FanEdgeCase = [u32; 11];
 
 /// Past this many faces a vertex keeps its rows (as `limit::MaskMerge` keeps its templates).
-const MAX_VALENCE: usize = 64;
+pub(crate) const MAX_VALENCE: usize = 64;
 
 /// The last level's points that Loop's closed forms give from the level before, and how that
 /// level's points are made.
@@ -622,9 +622,10 @@ fn ring_sum(at: &impl Fn(u32) -> Lanes, centre: Lanes, ring: &[u32]) -> Lanes {
 }
 
 /// The rings of a triangle mesh's vertices with a closed fan (3 to [`MAX_VALENCE`] triangles
-/// around, each neighbour once), counter-clockwise as the triangles are wound.
+/// around, each neighbour once), counter-clockwise as the triangles are wound; or, made by
+/// [`Rings::of_fans`], of another kind of cell (`crate::quad_rings`'s quads).
 #[derive(Clone, Debug)]
-struct Rings {
+pub(crate) struct Rings {
     /// `list[offsets[v]..offsets[v + 1]]` is `v`'s ring, empty when it has none.
     offsets: Vec<u32>,
     list: Vec<u32>,
@@ -632,20 +633,35 @@ struct Rings {
 
 impl Rings {
     fn new(triangles: &[[u32; 3]], vertices: usize) -> Option<Self> {
-        // Each corner's (next, previous) vertex, grouped by vertex: the fan's steps.
+        // Each corner's (next, previous) vertex.
+        let steps = |[a, b, c]: [u32; 3]| [(a, [b, c]), (b, [c, a]), (c, [a, b])];
+        Rings::of_fans(triangles, vertices, steps, closed_ring)
+    }
+
+    /// The rings of the vertices of `cells` (`vertices` of them) whose fan of 3 to
+    /// [`MAX_VALENCE`] cells `close` closes into a ring: `steps` gives each corner of a cell as
+    /// `(vertex, step)`, the steps are grouped by vertex, and `close(fan, v, ring)` says whether
+    /// vertex `v`'s steps close, leaving its ring in `ring`. `None` when a cell names a vertex
+    /// past `vertices`.
+    pub(crate) fn of_fans<const N: usize, const S: usize>(
+        cells: &[[u32; N]],
+        vertices: usize,
+        steps: impl Fn([u32; N]) -> [(u32, [u32; S]); N],
+        close: impl Fn(&[[u32; S]], u32, &mut Vec<u32>) -> bool,
+    ) -> Option<Self> {
         let mut offsets = vec![0u32; vertices + 1];
-        for &v in triangles.as_flattened() {
+        for &v in cells.as_flattened() {
             *offsets.get_mut(v as usize + 1)? += 1;
         }
         for v in 1..offsets.len() {
             offsets[v] += offsets[v - 1];
         }
         let mut fill = offsets.clone();
-        let mut steps = vec![[0u32; 2]; 3 * triangles.len()];
-        for &[a, b, c] in triangles {
-            for (v, next, previous) in [(a, b, c), (b, c, a), (c, a, b)] {
+        let mut grouped = vec![[0u32; S]; N * cells.len()];
+        for &cell in cells {
+            for (v, step) in steps(cell) {
                 let slot = &mut fill[v as usize];
-                steps[*slot as usize] = [next, previous];
+                grouped[*slot as usize] = step;
                 *slot += 1;
             }
         }
@@ -653,8 +669,8 @@ impl Rings {
         let (mut ring_offsets, mut list) = (Vec::with_capacity(vertices + 1), Vec::new());
         ring_offsets.push(0);
         for v in 0..vertices {
-            let fan = &steps[offsets[v] as usize..offsets[v + 1] as usize];
-            if (3..=MAX_VALENCE).contains(&fan.len()) && closed_ring(fan, v as u32, &mut ring) {
+            let fan = &grouped[offsets[v] as usize..offsets[v + 1] as usize];
+            if (3..=MAX_VALENCE).contains(&fan.len()) && close(fan, v as u32, &mut ring) {
                 list.extend_from_slice(&ring);
             }
             ring_offsets.push(list.len() as u32);
@@ -679,12 +695,12 @@ impl Rings {
         Rings { offsets, list }
     }
 
-    fn bytes(&self) -> u64 {
+    pub(crate) fn bytes(&self) -> u64 {
         (std::mem::size_of_val(&self.offsets[..]) + std::mem::size_of_val(&self.list[..])) as u64
     }
 
     /// The ring of `v`, when it has one.
-    fn of(&self, v: u32) -> Option<&[u32]> {
+    pub(crate) fn of(&self, v: u32) -> Option<&[u32]> {
         let (start, end) = (*self.offsets.get(v as usize)?, *self.offsets.get(v as usize + 1)?);
         (end > start).then(|| &self.list[start as usize..end as usize])
     }

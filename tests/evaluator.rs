@@ -444,6 +444,28 @@ fn a_fans_hub_gives_what_subdivide_gives() {
     }
 }
 
+/// Asserts that `evaluator`'s frame for `control` (with its normals when `normals`) is what
+/// its table's own rows give (`StencilTable::evaluate_with_normals`, the rows every point keeps
+/// for `stencils()` and the GPU): positions to 1e-5 of the size, normals to 1e-5, the GPU
+/// evaluator's tolerance against the CPU's (issue 14). Gives the number of points compared.
+fn frame_equals_the_rows(
+    evaluator: &Evaluator,
+    control: &[f32],
+    normals: bool,
+    what: &str,
+) -> usize {
+    let n = evaluator.num_vertices();
+    let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+    evaluator.evaluate(control, &mut positions, normals.then_some(&mut got_normals)).unwrap();
+    let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+    evaluator.table().evaluate_with_normals(control, &mut rows, &mut row_normals).unwrap();
+    assert_close(&positions, &rows, 1e-5 * diagonal(&rows), what);
+    if normals {
+        assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
+    }
+    n
+}
+
 /// Loop's limit points in closed form from the level before (`Evaluator::ring_vertices`) give
 /// what the table's own rows give (`StencilTable::evaluate_with_normals`, the rows every point
 /// keeps for `stencils()` and the GPU), at levels 1 to 3 (4 on the closed meshes), with and without normals: on a
@@ -486,19 +508,7 @@ fn loops_closed_forms_equal_the_tables_rows() {
                 } else {
                     assert!(evaluator.ring_vertices() < n, "{what}: the boundary keeps its rows");
                 }
-                let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-                evaluator
-                    .evaluate(&control, &mut positions, normals.then_some(&mut got_normals))
-                    .unwrap();
-                let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-                let table = evaluator.table();
-                table.evaluate_with_normals(&control, &mut rows, &mut row_normals).unwrap();
-                assert_close(&positions, &rows, 1e-5 * diagonal(&rows), &what);
-                if normals {
-                    // The GPU evaluator's tolerance against the CPU's (issue 14: 1e-5).
-                    assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
-                }
-                compared += n;
+                compared += frame_equals_the_rows(&evaluator, &control, normals, &what);
             }
         }
     }
@@ -539,18 +549,7 @@ fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
                 let n = evaluator.num_vertices();
                 assert_eq!(evaluator.patch_vertices(), 0, "{what}: no patch");
                 assert_eq!(evaluator.ring_vertices(), n, "{what}: every point from the masks");
-                let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-                evaluator
-                    .evaluate(&control, &mut positions, normals.then_some(&mut got_normals))
-                    .unwrap();
-                let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-                let table = evaluator.table();
-                table.evaluate_with_normals(&control, &mut rows, &mut row_normals).unwrap();
-                assert_close(&positions, &rows, 1e-5 * diagonal(&rows), &what);
-                if normals {
-                    assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
-                }
-                compared += n;
+                compared += frame_equals_the_rows(&evaluator, &control, normals, &what);
             }
         }
     }
