@@ -28,12 +28,14 @@ pub(crate) struct QuadRings {
     /// Level `k + 1`'s points from level `k`'s, for every level.
     steps: Vec<QuadStep>,
     /// The last level's vertices of valence 4: `[v, e0, f0, e1, f1, e2, f2, e3, f3]`, the
-    /// ring as `rings` holds it (per quad `i` counter-clockwise, the neighbour `e_i` it shares
-    /// with the quad before and its corner `f_i` opposite the vertex).
+    /// ring as [`Rings::of_fans`] gives it here (per quad `i` counter-clockwise, the neighbour
+    /// `e_i` it shares with the quad before and its corner `f_i` opposite the vertex), as byte
+    /// offsets (16 bytes a padded point), which in wasm spare a shift per read.
     regular: Vec<[u32; 9]>,
-    /// Its other vertices, each with its ring in `rings`.
-    others: Vec<u32>,
-    rings: Rings,
+    /// Its other vertices, `[v, start]`: the ring is `other_rings[start..]` up to the next
+    /// one's start (or the end).
+    others: Vec<[u32; 2]>,
+    other_rings: Vec<u32>,
     /// Per valence (up to [`MAX_VALENCE`]), the limit masks' weights.
     masks: Vec<LimitMasks>,
     outputs: usize,
@@ -136,11 +138,22 @@ impl QuadStep {
             // `(n - 2)/n v + (Σ e_i + Σ F_i) / n²`, on differences.
             let centre = at(v as u32);
             let around = &self.around[span[0] as usize..span[1] as usize];
-            let sum = around.iter().fold(Lanes::ZERO, |sum, &[q, c]| {
+            let term = |sum: Lanes, &[q, c]: &[u32; 2]| {
                 sum.add(at(q).sub(centre)).add(face(c).sub(centre))
-            });
-            let n = around.len() as f32;
-            centre.add_lanes(sum, 1.0 / (n * n)).xyzw()
+            };
+            match around {
+                // Valence 4 (every edge point, and most vertices past level 1): a length the
+                // compiler sees.
+                [a, b, c, d] => {
+                    let sum = term(term(Lanes::ZERO, a), b).add(term(term(Lanes::ZERO, c), d));
+                    centre.add_lanes(sum, 1.0 / 16.0).xyzw()
+                }
+                _ => {
+                    let sum = around.iter().fold(Lanes::ZERO, term);
+                    let n = around.len() as f32;
+                    centre.add_lanes(sum, 1.0 / (n * n)).xyzw()
+                }
+            }
         }));
         out.extend_from_slice(&faces);
         out.extend(self.edges.iter().map(|&[a, b, c0, c1]| {
@@ -217,19 +230,25 @@ impl QuadRings {
         };
         let quads = faces.indices.as_chunks::<4>().0;
         let rings = Rings::of_fans(quads, outputs, fan_steps, closed_ring)?;
-        let (mut regular, mut others) = (Vec::new(), Vec::new());
+        if outputs >= 1 << 28 {
+            return None;
+        }
+        let (mut regular, mut others, mut other_rings) = (Vec::new(), Vec::new(), Vec::new());
         for v in 0..outputs as u32 {
             match *rings.of(v)? {
                 [e0, f0, e1, f1, e2, f2, e3, f3] => {
-                    regular.push([v, e0, f0, e1, f1, e2, f2, e3, f3])
+                    regular.push([v, e0, f0, e1, f1, e2, f2, e3, f3].map(|i| i << 4))
                 }
-                _ => others.push(v),
+                ref ring => {
+                    others.push([v, other_rings.len() as u32]);
+                    other_rings.extend_from_slice(ring);
+                }
             }
         }
         let masks = (0..=MAX_VALENCE)
             .map(|n| if n >= 3 { LimitMasks::new(n) } else { LimitMasks::default() })
             .collect();
-        Some(QuadRings { steps, regular, others, rings, masks, outputs })
+        Some(QuadRings { steps, regular, others, other_rings, masks, outputs })
     }
 
     /// Number of output vertices they give: all of them.
@@ -237,11 +256,12 @@ impl QuadRings {
         self.outputs
     }
 
-    /// What this adds to the table's bytes: the steps, the rings and the cases.
+    /// What this adds to the table's bytes: the steps and the cases with their rings.
     pub(crate) fn bytes(&self) -> u64 {
-        let cases =
-            std::mem::size_of_val(&self.regular[..]) + std::mem::size_of_val(&self.others[..]);
-        self.steps.iter().map(QuadStep::bytes).sum::<u64>() + self.rings.bytes() + cases as u64
+        let cases = std::mem::size_of_val(&self.regular[..])
+            + std::mem::size_of_val(&self.others[..])
+            + std::mem::size_of_val(&self.other_rings[..]);
+        self.steps.iter().map(QuadStep::bytes).sum::<u64>() + cases as u64
     }
 
     /// Each output vertex's limit point and tangents, from the padded control points.
@@ -253,24 +273,31 @@ impl QuadRings {
         if points.len() < self.outputs {
             return;
         }
-        // SAFETY: the rings hold vertices below `self.outputs` (`Rings::new` checked each), so
-        // below `points.len()`.
+        // SAFETY: the rings hold vertices below `self.outputs` (`Rings::of_fans` checked each),
+        // so below `points.len()`; the regular cases hold them times 16.
         let at = |i: u32| {
             debug_assert!((i as usize) < points.len());
             Lanes::load(unsafe { points.get_unchecked(i as usize) })
         };
+        let at_byte = |b: u32| {
+            debug_assert!(b.is_multiple_of(16) && (b as usize) < 16 * points.len());
+            Lanes::load(unsafe { &*points.as_ptr().byte_add(b as usize) })
+        };
         for case in &self.regular {
-            let [v, e0, f0, e1, f1, e2, f2, e3, f3] = case.map(at);
+            let [v, e0, f0, e1, f1, e2, f2, e3, f3] = case.map(at_byte);
             let edges = e0.add(e1).add(e2.add(e3));
             let faces = f0.add(f1).add(f2.add(f3));
             let point = faces.add_lanes(edges, 4.0).add_lanes(v, 16.0).scale(1.0 / 36.0);
             let (f03, f12) = (f0.sub(f2), f1.sub(f3));
             let t1 = f03.sub(f12).add_lanes(e0.sub(e2), 4.0);
             let t2 = f03.add(f12).add_lanes(e1.sub(e3), 4.0);
-            emit(case[0] as usize, point, [t1, t2]);
+            emit((case[0] >> 4) as usize, point, [t1, t2]);
         }
-        for &v in &self.others {
-            let (centre, ring) = (at(v), self.rings.of(v).unwrap_or(&[]));
+        let ends = self.others.iter().skip(1).map(|&[_, start]| start as usize);
+        let ends = ends.chain([self.other_rings.len()]);
+        for (&[v, start], end) in self.others.iter().zip(ends) {
+            let ring = self.other_rings.get(start as usize..end).unwrap_or(&[]);
+            let centre = at(v);
             let Some(m) = self.masks.get(ring.len() / 2) else { continue };
             let (mut edges, mut faces) = (Lanes::ZERO, Lanes::ZERO);
             let (mut t1, mut t2) = (Lanes::ZERO, Lanes::ZERO);
