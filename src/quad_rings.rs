@@ -91,6 +91,12 @@ impl QuadStep {
         Some(QuadStep { cell_offsets, corners, vertex_offsets, around, edges })
     }
 
+    /// Number of points of the child level: a vertex point per vertex, a face point per cell,
+    /// an edge point per edge.
+    fn outputs(&self) -> usize {
+        self.vertex_offsets.len() - 1 + self.cell_offsets.len() - 1 + self.edges.len()
+    }
+
     fn bytes(&self) -> u64 {
         let lists = std::mem::size_of_val(&self.cell_offsets[..])
             + std::mem::size_of_val(&self.corners[..])
@@ -104,7 +110,7 @@ impl QuadStep {
     fn apply(&self, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
         let vertices = self.vertex_offsets.len() - 1;
         let cells = self.cell_offsets.len() - 1;
-        let mut out = Vec::with_capacity(vertices + cells + self.edges.len());
+        let mut out = Vec::with_capacity(self.outputs());
         if points.len() < vertices {
             return out;
         }
@@ -176,24 +182,15 @@ struct LimitMasks {
 
 impl LimitMasks {
     fn new(n: usize) -> Self {
-        let face = 1.0 / (n as f64 * (n as f64 + 5.0));
-        let cos = |i: usize| {
-            if n == 4 {
-                [1.0, 0.0, -1.0, 0.0][i % 4]
-            } else {
-                (std::f64::consts::TAU * (i % n) as f64 / n as f64).cos()
-            }
-        };
-        let scale = if n == 4 { 1.0 } else { crate::rules::limit::catmull_clark_face_scale(n) };
-        let tangents = (0..n)
-            .map(|i| {
-                let before = i + n - 1;
-                let on_edge = [4.0 * cos(i), 4.0 * cos(before)];
-                let on_face = [scale * (cos(i) + cos(i + 1)), scale * (cos(before) + cos(i))];
-                [on_edge.map(|w| w as f32), on_face.map(|w| w as f32)]
-            })
-            .collect();
-        LimitMasks { edge: (4.0 * face) as f32, face: face as f32, tangents }
+        use crate::rules::limit::{catmull_clark_face_scale, catmull_clark_tangent_weights};
+        let (_, edge, face) = crate::rules::limit::catmull_clark_position_weights(n);
+        let theta = std::f64::consts::TAU / n as f64;
+        let cos = |i: usize| (theta * i as f64).cos();
+        let mut tangents = Vec::with_capacity(n);
+        catmull_clark_tangent_weights(n, cos, catmull_clark_face_scale(n), |_, weights| {
+            tangents.push(weights.map(|pair| pair.map(|w| w as f32)));
+        });
+        LimitMasks { edge: edge as f32, face: face as f32, tangents }
     }
 }
 
@@ -220,8 +217,7 @@ impl QuadRings {
                 mesh = std::borrow::Cow::Owned(crate::refine::pqq::child_mesh(&mesh, zeros));
             }
         }
-        let made = steps.last().map(|s| s.vertex_offsets.len() + s.cell_offsets.len() - 2);
-        if made.map(|m| m + steps.last().map_or(0, |s| s.edges.len())) != Some(outputs) {
+        if steps.last().map(QuadStep::outputs) != Some(outputs) {
             return None;
         }
         // Each corner's (next, opposite, previous) vertex: the fan's steps.

@@ -132,6 +132,42 @@ impl Angles {
     }
 }
 
+/// Catmull-Clark's smooth limit position at valence `n`: the weights `(vertex, edge, face)` on
+/// the vertex, each edge neighbour and each face's opposite corner (see the module docs; a
+/// vertex of two faces stays).
+pub(crate) fn catmull_clark_position_weights(n: usize) -> (f64, f64, f64) {
+    match n {
+        2 => (1.0, 0.0, 0.0),
+        4 => (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0),
+        _ => {
+            let n = n as f64;
+            let f = 1.0 / (n * (n + 5.0));
+            (1.0 - n * 5.0 * f, 4.0 * f, f)
+        }
+    }
+}
+
+/// Catmull-Clark's smooth limit tangents at valence `n` (3 or more): `each(i, [on_edge,
+/// on_face])` for `i` in `0..n`, each `[first, second]`, the weights on edge neighbour `i` and on
+/// face `i`'s opposite corner. `first` is `Σ 4 cos_i e_i + s (cos_i + cos_(i+1)) f_i` and
+/// `second` is `first` rotated by one (its weight at `i` is `first`'s at `i - 1`); `cos(i)`
+/// gives `cos(2πi/n)` for `i` in `0..=n` and `face_scale` is `s`
+/// ([`catmull_clark_face_scale`]), both exact at `n` = 4 whatever is given.
+pub(crate) fn catmull_clark_tangent_weights(
+    n: usize,
+    cos: impl Fn(usize) -> f64,
+    face_scale: f64,
+    mut each: impl FnMut(usize, [[f64; 2]; 2]),
+) {
+    let cos = |i: usize| if n == 4 { [1.0, 0.0, -1.0, 0.0][i % 4] } else { cos(i) };
+    let face_scale = if n == 4 { 1.0 } else { face_scale };
+    let face_weight = |i: usize| face_scale * (cos(i) + cos(i + 1));
+    for i in 0..n {
+        let before = (i + n - 1) % n;
+        each(i, [[4.0 * cos(i), 4.0 * cos(before)], [face_weight(i), face_weight(before)]]);
+    }
+}
+
 /// The scale `1/(4λ - 1)` of Catmull-Clark's smooth tangent weights on the faces' opposite
 /// corners at valence `n`, `λ` the scheme's subdominant eigenvalue there.
 pub(crate) fn catmull_clark_face_scale(n: usize) -> f64 {
@@ -274,13 +310,7 @@ impl LimitRules<'_> {
             LimitRule::Smooth => {
                 let n = hood.faces.len();
                 let (vertex, edge, face) = match hood.catmull_clark {
-                    true if n == 2 => (1.0, 0.0, 0.0),
-                    true if n == 4 => (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0),
-                    true => {
-                        let n = n as f64;
-                        let f = 1.0 / (n * (n + 5.0));
-                        (1.0 - n * 5.0 * f, 4.0 * f, f)
-                    }
+                    true => catmull_clark_position_weights(n),
                     _ if n == 6 => (0.5, 1.0 / 12.0, 0.0),
                     _ => {
                         let cos = hood.angles.of(n).0.get(1).map_or(1.0, |a| a[0]);
@@ -349,24 +379,16 @@ impl LimitRules<'_> {
                         add(second, edge(i), sin);
                     }
                 } else {
-                    let cos = |i: usize| {
-                        if n == 4 {
-                            [1.0, 0.0, -1.0, 0.0][i % 4]
-                        } else {
-                            angles.get(i).map_or(0.0, |a| a[0])
-                        }
-                    };
-                    let face_scale = if n == 4 { 1.0 } else { face_scale };
-                    // `second` is `first` rotated by one: its weight at `i` is `first`'s at `i - 1`.
-                    let face_weight = |i: usize| face_scale * (cos(i) + cos(i + 1));
-                    for i in 0..n {
-                        add(first, face(i), face_weight(i));
-                        add(second, face(i), face_weight((i + n - 1) % n));
-                    }
-                    for i in 0..n {
-                        add(first, edge(i), 4.0 * cos(i));
-                        add(second, edge(i), 4.0 * cos((i + n - 1) % n));
-                    }
+                    let cos = |i: usize| angles.get(i).map_or(0.0, |a| a[0]);
+                    // The faces first, then the edges, as OpenSubdiv sums them.
+                    catmull_clark_tangent_weights(n, cos, face_scale, |i, [_, on_face]| {
+                        add(first, face(i), on_face[0]);
+                        add(second, face(i), on_face[1]);
+                    });
+                    catmull_clark_tangent_weights(n, cos, face_scale, |i, [on_edge, _]| {
+                        add(first, edge(i), on_edge[0]);
+                        add(second, edge(i), on_edge[1]);
+                    });
                 }
             }
             LimitRule::Crease([c0, c1]) => {

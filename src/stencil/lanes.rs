@@ -236,10 +236,11 @@ impl FourNormals {
         let each = match self {
             #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
             FourNormals::Lanes(xyz) => {
-                if let (true, &[first, .., last]) = (RUNS, rows) {
+                if let (true, &[first, _, _, last]) = (RUNS, rows) {
                     // Four consecutive rows: three full stores, where one per row takes two.
-                    if rows.len() == 4 && last == first + 3 && last < out.len() {
-                        store_twelve(xyz, &mut out[first..first + 4]);
+                    let run = out.get_mut(first..first + 4).and_then(|run| run.try_into().ok());
+                    if let (true, Some(run)) = (last == first + 3, run) {
+                        store_twelve(xyz, run);
                         return;
                     }
                 }
@@ -316,20 +317,18 @@ fn per_register([x, y, z]: [core::arch::wasm32::v128; 3]) -> [Lanes; 4] {
 /// stores of `x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3`.
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 #[inline(always)]
-fn store_twelve([x, y, z]: [core::arch::wasm32::v128; 3], out: &mut [[f32; 3]]) {
+fn store_twelve([x, y, z]: [core::arch::wasm32::v128; 3], out: &mut [[f32; 3]; 4]) {
     use core::arch::wasm32::{i32x4_shuffle, v128, v128_store};
     let (low, high) = (i32x4_shuffle::<0, 4, 1, 5>(x, y), i32x4_shuffle::<2, 6, 3, 7>(x, y));
     let first = i32x4_shuffle::<0, 1, 4, 2>(low, z);
     let second = i32x4_shuffle::<0, 1, 4, 5>(i32x4_shuffle::<3, 5, 3, 5>(low, z), high);
     let third = i32x4_shuffle::<2, 6, 7, 3>(z, high);
     let at = out.as_mut_ptr().cast::<v128>();
-    if out.len() == 4 {
-        // SAFETY: `out` is four points, 48 writable bytes; wasm stores need no alignment.
-        unsafe {
-            v128_store(at, first);
-            v128_store(at.byte_add(16), second);
-            v128_store(at.byte_add(32), third);
-        }
+    // SAFETY: `out` is four points, 48 writable bytes; wasm stores need no alignment.
+    unsafe {
+        v128_store(at, first);
+        v128_store(at.byte_add(16), second);
+        v128_store(at.byte_add(32), third);
     }
 }
 
