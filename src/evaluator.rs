@@ -13,6 +13,7 @@ use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
+use crate::smooth_levels::SmoothLevels;
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
@@ -56,6 +57,9 @@ pub struct Evaluator {
     /// Catmull-Clark limit points on a closed cage that no patch covers, from the last level's
     /// points by the masks (see `crate::quad_rings`); then they give every point.
     quads: Option<QuadRings>,
+    /// Refined points (no limit) of a closed cage untagged, every level by the smooth rules
+    /// each frame (see `crate::smooth_levels`); then they give every point.
+    levels: Option<SmoothLevels>,
     /// The weights of the rows a frame reads, each distinct list once, when the table has
     /// tangents (see `crate::shared_weights`).
     shared: Option<SharedWeights>,
@@ -121,6 +125,26 @@ impl Evaluator {
             }
             _ => None,
         };
+        // Refined frames of a closed cage untagged: the levels by the smooth rules. (With
+        // normals, Catmull-Clark's and Loop's are the limit's, from the table's tangent rows.)
+        let levels = match options.max_bytes.checked_sub(build.table.bytes()) {
+            Some(budget) if !options.limit && !options.normals && tags.is_trivial() => {
+                let outputs = build.table.num_stencils();
+                let made = match options.schemes.first() {
+                    Some(&Scheme::CatmullClark)
+                        if options.schemes.iter().all(|&s| s == Scheme::CatmullClark) =>
+                    {
+                        SmoothLevels::catmull_clark(base, options.levels(), outputs)
+                    }
+                    Some(&Scheme::Loop) if options.schemes.iter().all(|&s| s == Scheme::Loop) => {
+                        SmoothLevels::loop_(base, options.levels(), outputs)
+                    }
+                    _ => None,
+                };
+                made.filter(|levels| levels.bytes() <= budget)
+            }
+            _ => None,
+        };
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,
             (true, true) => NormalSource::Tangents,
@@ -139,7 +163,7 @@ impl Evaluator {
         }
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
-                let closed = closed_forms(&patches, &rings, &quads);
+                let closed = closed_forms(&patches, &rings, &quads, &None);
                 let rows: Vec<usize> = match closed.map(|c| c.rest()) {
                     Some(rest) => rest.iter().map(|&r| r as usize).collect(),
                     None => (0..build.table.num_stencils()).collect(),
@@ -159,6 +183,7 @@ impl Evaluator {
             patches,
             rings,
             quads,
+            levels,
             shared,
         })
     }
@@ -244,13 +269,23 @@ impl Evaluator {
         self.rings.as_ref().map_or(quads, RegularRings::num_points)
     }
 
+    /// How many output vertices [`Evaluator::evaluate`] makes by the levels' smooth rules
+    /// rather than from their stencil rows: without the limit, Catmull-Clark or Loop at every
+    /// level and no tags, on a closed cage (every edge between two faces, every vertex with a
+    /// closed fan of 3 to 64 faces): then every vertex, each frame making each level from the
+    /// one before (see `crate::smooth_levels`). Same positions to f32 rounding.
+    pub fn step_vertices(&self) -> usize {
+        self.levels.as_ref().map_or(0, |_| self.num_vertices())
+    }
+
     /// Bytes of what a frame reads besides its input: the table, and for the closed forms
     /// ([`Evaluator::ring_vertices`]) the levels' topology or the level before's own table and
     /// the cases (indices of the points each reads), which `options.max_bytes` bounds with the
     /// table.
     pub fn bytes(&self) -> u64 {
         let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
-        self.table.bytes() + self.rings.as_ref().map_or(quads, RegularRings::bytes)
+        let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes);
+        self.table.bytes() + self.rings.as_ref().map_or(quads, RegularRings::bytes) + levels
     }
 
     /// Number of output vertices.
@@ -306,7 +341,7 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        if let Some(closed) = closed_forms(&self.patches, &self.rings, &self.quads) {
+        if let Some(closed) = closed_forms(&self.patches, &self.rings, &self.quads, &self.levels) {
             // The rows of the points no closed form gives, then the closed forms.
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
@@ -382,12 +417,14 @@ fn closed_forms<'a>(
     patches: &'a Option<RegularPatches>,
     rings: &'a Option<RegularRings>,
     quads: &'a Option<QuadRings>,
+    levels: &'a Option<SmoothLevels>,
 ) -> Option<&'a dyn ClosedForms> {
-    match (patches, rings, quads) {
-        (Some(patches), _, _) => Some(patches),
-        (None, Some(rings), _) => Some(rings),
-        (None, None, Some(quads)) => Some(quads),
-        (None, None, None) => None,
+    match (patches, rings, quads, levels) {
+        (Some(patches), ..) => Some(patches),
+        (None, Some(rings), ..) => Some(rings),
+        (None, None, Some(quads), _) => Some(quads),
+        (None, None, None, Some(levels)) => Some(levels),
+        (None, None, None, None) => None,
     }
 }
 

@@ -42,6 +42,7 @@ pub mod rules;
 pub mod scheme;
 pub mod shapes;
 mod shared_weights;
+mod smooth_levels;
 pub mod stencil;
 pub mod tags;
 pub mod triangles;

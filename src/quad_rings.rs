@@ -20,7 +20,7 @@
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::regular_rings::{Rings, MAX_VALENCE};
-use crate::stencil::{ClosedForms, Lanes, Normals};
+use crate::stencil::{ClosedForms, Lanes, Normals, PointSink};
 
 /// Catmull-Clark's limit on a closed cage: the levels' steps, and the last level's rings.
 #[derive(Clone, Debug)]
@@ -44,7 +44,7 @@ pub(crate) struct QuadRings {
 /// One level of Catmull and Clark's smooth rules on a closed cage whose every vertex has a
 /// closed fan of 3 to [`MAX_VALENCE`] faces, in the order `refine::pqq` numbers the child level.
 #[derive(Clone, Debug)]
-struct QuadStep {
+pub(crate) struct QuadStep {
     /// `corners[cell_offsets[c]..cell_offsets[c + 1]]` are cell `c`'s corners.
     cell_offsets: Vec<u32>,
     corners: Vec<u32>,
@@ -57,7 +57,7 @@ struct QuadStep {
 }
 
 impl QuadStep {
-    fn new(mesh: &HalfEdgeMesh) -> Option<Self> {
+    pub(crate) fn new(mesh: &HalfEdgeMesh) -> Option<Self> {
         if !mesh.has_simple_edges() || mesh.is_non_manifold() {
             return None;
         }
@@ -93,11 +93,11 @@ impl QuadStep {
 
     /// Number of points of the child level: a vertex point per vertex, a face point per cell,
     /// an edge point per edge.
-    fn outputs(&self) -> usize {
+    pub(crate) fn outputs(&self) -> usize {
         self.vertex_offsets.len() - 1 + self.cell_offsets.len() - 1 + self.edges.len()
     }
 
-    fn bytes(&self) -> u64 {
+    pub(crate) fn bytes(&self) -> u64 {
         let lists = std::mem::size_of_val(&self.cell_offsets[..])
             + std::mem::size_of_val(&self.corners[..])
             + std::mem::size_of_val(&self.vertex_offsets[..])
@@ -106,13 +106,19 @@ impl QuadStep {
         lists as u64
     }
 
-    /// The child level's points from `points` (this level's, padded).
-    fn apply(&self, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
+    /// The child level's points, padded.
+    pub(crate) fn padded(&self, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
+        let mut out = Vec::with_capacity(self.outputs());
+        self.apply(points, &mut out);
+        out
+    }
+
+    /// The child level's points from `points` (this level's, padded), to `out` in order.
+    pub(crate) fn apply(&self, points: &[[f32; 4]], out: &mut impl PointSink) {
         let vertices = self.vertex_offsets.len() - 1;
         let cells = self.cell_offsets.len() - 1;
-        let mut out = Vec::with_capacity(self.outputs());
         if points.len() < vertices {
-            return out;
+            return;
         }
         // SAFETY: the corners, the neighbours and the edges' ends are vertices of the mesh the
         // step was made from (`QuadStep::new`), so below `points.len()`; the faces are its
@@ -139,7 +145,7 @@ impl QuadStep {
             debug_assert!((c as usize) < faces.len());
             Lanes::load(unsafe { faces.get_unchecked(c as usize) })
         };
-        out.extend(self.vertex_offsets.windows(2).enumerate().map(|(v, span)| {
+        out.put_all(self.vertex_offsets.windows(2).enumerate().map(|(v, span)| {
             // `v + (Σ (e_i - v) + Σ (F_i - v)) / n²`: Catmull and Clark's vertex rule,
             // `(n - 2)/n v + (Σ e_i + Σ F_i) / n²`, on differences.
             let centre = at(v as u32);
@@ -152,20 +158,20 @@ impl QuadStep {
                 // compiler sees.
                 [a, b, c, d] => {
                     let sum = term(term(Lanes::ZERO, a), b).add(term(term(Lanes::ZERO, c), d));
-                    centre.add_lanes(sum, 1.0 / 16.0).xyzw()
+                    centre.add_lanes(sum, 1.0 / 16.0)
                 }
                 _ => {
                     let sum = around.iter().fold(Lanes::ZERO, term);
                     let n = around.len() as f32;
-                    centre.add_lanes(sum, 1.0 / (n * n)).xyzw()
+                    centre.add_lanes(sum, 1.0 / (n * n))
                 }
             }
         }));
-        out.extend_from_slice(&faces);
-        out.extend(self.edges.iter().map(|&[a, b, c0, c1]| {
-            at(a).add(at(b)).add(face(c0).add(face(c1))).scale(0.25).xyzw()
-        }));
-        out
+        out.put_all(faces.iter().map(Lanes::load));
+        out.put_all(
+            (self.edges.iter())
+                .map(|&[a, b, c0, c1]| at(a).add(at(b)).add(face(c0).add(face(c1))).scale(0.25)),
+        );
     }
 }
 
@@ -208,15 +214,7 @@ impl QuadRings {
         if levels == 0 || faces.face_sizes.iter().any(|&n| n != 4) {
             return None;
         }
-        let mut steps = Vec::with_capacity(levels);
-        let mut mesh = std::borrow::Cow::Borrowed(base);
-        for level in 0..levels {
-            steps.push(QuadStep::new(&mesh)?);
-            if level + 1 < levels {
-                let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(&mesh)];
-                mesh = std::borrow::Cow::Owned(crate::refine::pqq::child_mesh(&mesh, zeros));
-            }
-        }
+        let steps = crate::smooth_levels::catmull_clark_steps(base, levels)?;
         if steps.last().map(QuadStep::outputs) != Some(outputs) {
             return None;
         }
@@ -264,7 +262,7 @@ impl QuadRings {
     fn each(&self, control: &[[f32; 4]], mut emit: impl FnMut(usize, Lanes, [Lanes; 2])) {
         let mut points = std::borrow::Cow::Borrowed(control);
         for step in &self.steps {
-            points = step.apply(&points).into();
+            points = step.padded(&points).into();
         }
         if points.len() < self.outputs {
             return;

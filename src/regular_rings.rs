@@ -34,7 +34,7 @@
 //! `stencils()` and the GPU; the points these give are left out of the rows' frame.
 
 use crate::mesh::HalfEdgeMesh;
-use crate::stencil::{ClosedForms, Lanes, Normals, StencilTable};
+use crate::stencil::{ClosedForms, Lanes, Normals, PointSink, StencilTable};
 
 /// What a closed form reads: the child of a regular vertex (`[v, q0..q5, output]`) or of an
 /// edge between two (`[a, b, c, d, a2, a3, a4, b2, b3, b4, output]`), the points read as byte
@@ -149,7 +149,7 @@ impl Step {
         Some(Step { rings, centres, edges })
     }
 
-    fn bytes(&self) -> u64 {
+    pub(crate) fn bytes(&self) -> u64 {
         let lists =
             std::mem::size_of_val(&self.centres[..]) + std::mem::size_of_val(&self.edges[..]);
         self.rings.bytes() + lists as u64
@@ -164,11 +164,10 @@ impl Step {
         self.edges = edge_children.iter().map(|&o| self.edges[o as usize - first_edge]).collect();
     }
 
-    /// The child level's points from `points` (this level's, padded).
-    fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
-        let mut out = Vec::with_capacity(self.centres.len() + self.edges.len());
+    /// The child level's points from `points` (this level's, padded), to `out` in order.
+    pub(crate) fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks], out: &mut impl PointSink) {
         if points.len() < self.rings.vertices() {
-            return out;
+            return;
         }
         // SAFETY: the centres, the rings and the edges hold vertices of the mesh the step was
         // made from (`Step::new`; `reorder` permutes them), so below `points.len()`. As in
@@ -179,7 +178,7 @@ impl Step {
         };
         let beta = |n: usize| masks.get(n).map_or(0.0, |m| m.beta);
         let regular = beta(6);
-        out.extend(self.centres.iter().map(|&v| {
+        out.put_all(self.centres.iter().map(|&v| {
             // (Every vertex has a ring here: `Step::new`.)
             let centre = at(v);
             let moved = match *self.rings.of(v).unwrap_or(&[]) {
@@ -189,18 +188,31 @@ impl Step {
                 }
                 ref ring => ring_sum(&at, centre, ring).scale(beta(ring.len())),
             };
-            centre.add(moved).xyzw()
+            centre.add(moved)
         }));
-        out.extend(self.edges.iter().map(|&[a, b, c, d]| {
-            at(c).add(at(d)).scale(0.125).add_lanes(at(a).add(at(b)), 0.375).xyzw()
-        }));
+        out.put_all(
+            self.edges.iter().map(|&[a, b, c, d]| {
+                at(c).add(at(d)).scale(0.125).add_lanes(at(a).add(at(b)), 0.375)
+            }),
+        );
+    }
+
+    /// Number of points of the child level.
+    pub(crate) fn outputs(&self) -> usize {
+        self.centres.len() + self.edges.len()
+    }
+
+    /// The child level's points, padded.
+    pub(crate) fn padded(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
+        let mut out = Vec::with_capacity(self.outputs());
+        self.apply(points, masks, &mut out);
         out
     }
 }
 
 /// The weights of a smooth Loop vertex of one valence.
 #[derive(Clone, Debug, Default)]
-struct FanMasks {
+pub(crate) struct FanMasks {
     beta: f32,
     chi: f32,
     cos: Vec<f32>,
@@ -208,7 +220,7 @@ struct FanMasks {
 }
 
 /// [`FanMasks`] of every valence up to [`MAX_VALENCE`] (none below 3).
-fn fan_masks() -> Vec<FanMasks> {
+pub(crate) fn fan_masks() -> Vec<FanMasks> {
     (0..=MAX_VALENCE).map(|n| if n >= 3 { FanMasks::new(n) } else { FanMasks::default() }).collect()
 }
 
@@ -456,12 +468,12 @@ impl RegularRings {
             Previous::Steps(steps) => {
                 let mut points = std::borrow::Cow::Borrowed(control);
                 for step in steps {
-                    points = step.apply(&points, &self.masks).into();
+                    points = step.padded(&points, &self.masks).into();
                 }
                 points
             }
             Previous::Nested(inner, step) => {
-                step.apply(&inner.parents(control), &self.masks).into()
+                step.padded(&inner.parents(control), &self.masks).into()
             }
         }
     }
@@ -473,7 +485,7 @@ impl RegularRings {
         let parents = if let Previous::Nested(inner, step) = &self.previous {
             let before = inner.parents(control);
             inner.each(&before, &mut emit);
-            step.apply(&before, &self.masks).into()
+            step.padded(&before, &self.masks).into()
         } else {
             self.parents(control)
         };

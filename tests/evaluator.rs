@@ -555,3 +555,60 @@ fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
     }
     assert!(compared > 10_000, "only {compared} points");
 }
+
+/// Refined frames of a closed cage untagged (`Evaluator::step_vertices`: every level by
+/// Catmull and Clark's or Loop's smooth rules each frame, the last written to the output) give
+/// what the table's own rows give and what `subdivide` gives, at levels 1 to 3: Catmull-Clark on triangle cages (an icosahedron; a torus of triangles
+/// with flipped diagonals, valences 5 to 7), a cube (valence 3), a dodecahedron (pentagons) and
+/// a quad torus; Loop on the two triangle cages. A cage with a boundary keeps its rows. It
+/// fails with the vertex rule's `1/n²` made `1/(n² + 1)`, or Loop's edge weight 3/8 made 0.37
+/// (both checked).
+#[test]
+fn refined_frames_from_the_levels_equal_the_tables_rows() {
+    let mut flipped = torus_triangles(9, 8, 1.0, 0.35);
+    for quad in (0..flipped.indices.len() / 6).step_by(3) {
+        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
+        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
+        if t[3] == a && t[4] == c {
+            t.copy_from_slice(&[a, b, d, b, c, d]);
+        }
+    }
+    let cases = [
+        (Scheme::CatmullClark, "icosahedron", icosahedron()),
+        (Scheme::CatmullClark, "flipped torus", flipped.clone()),
+        (Scheme::CatmullClark, "cube", subsurf::shapes::cube()),
+        (Scheme::CatmullClark, "dodecahedron", subsurf::shapes::dodecahedron()),
+        (Scheme::CatmullClark, "quad torus", torus(7, 5, 1.0, 0.3)),
+        (Scheme::Loop, "icosahedron", icosahedron()),
+        (Scheme::Loop, "flipped torus", flipped),
+    ];
+    let mut compared = 0;
+    for (scheme, name, mesh) in cases {
+        let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+        let control = deform(&mesh.positions, 0.6);
+        for levels in 1..=3 {
+            let what = format!("{scheme} on {name}, level {levels}");
+            let evaluator = Evaluator::new(
+                &base,
+                &[],
+                &options(scheme, levels, false, false),
+                &Tags::default(),
+            )
+            .unwrap();
+            assert_eq!(evaluator.step_vertices(), evaluator.num_vertices(), "{what}");
+            compared += frame_equals_the_rows(&evaluator, &control, false, &what);
+            check(&mesh, &[], &options(scheme, levels, false, false), &Tags::default(), &what);
+        }
+    }
+    assert!(compared > 10_000, "only {compared} points");
+    let open = grid_with_hole(6, 6, 2..4, 2..4);
+    let base = HalfEdgeMesh::from_poly(&open).unwrap();
+    let evaluator = Evaluator::new(
+        &base,
+        &[],
+        &options(Scheme::CatmullClark, 2, false, false),
+        &Tags::default(),
+    )
+    .unwrap();
+    assert_eq!(evaluator.step_vertices(), 0, "a boundary keeps the rows");
+}

@@ -155,6 +155,46 @@ impl Lanes {
     }
 }
 
+/// Where a level's points go as a step makes them, in output order: the padded points of the
+/// next level (a `Vec`), or the caller's positions ([`Written`]) for the last level, which is
+/// then not made twice.
+pub(crate) trait PointSink {
+    fn put_all(&mut self, points: impl Iterator<Item = Lanes>);
+}
+
+impl PointSink for Vec<[f32; 4]> {
+    #[inline(always)]
+    fn put_all(&mut self, points: impl Iterator<Item = Lanes>) {
+        self.extend(points.map(Lanes::xyzw));
+    }
+}
+
+/// Points written to `out` from its start, one after the other (points past its end are left
+/// out).
+pub(crate) struct Written<'o> {
+    out: &'o mut [[f32; 3]],
+    at: usize,
+}
+
+impl<'o> Written<'o> {
+    pub(crate) fn new(out: &'o mut [[f32; 3]]) -> Self {
+        Written { out, at: 0 }
+    }
+}
+
+impl PointSink for Written<'_> {
+    #[inline(always)]
+    fn put_all(&mut self, points: impl Iterator<Item = Lanes>) {
+        let rest = self.out.get_mut(self.at..).unwrap_or_default();
+        let mut count = 0;
+        for (out, point) in rest.iter_mut().zip(points) {
+            point.store_xyz(out);
+            count += 1;
+        }
+        self.at += count;
+    }
+}
+
 /// Unit normals of tangent pairs ([`crate::limit::normal`]), gathered in batches of [`BATCH`]
 /// and made four at a time: in wasm the four cross products, lengths and divisions run side by
 /// side in lanes, with exactly that function's f32 operations (the same results), and where

@@ -20,7 +20,7 @@ mod build;
 mod lanes;
 
 pub(crate) use build::Stencils;
-pub(crate) use lanes::{pad, Lanes, Normals};
+pub(crate) use lanes::{pad, Lanes, Normals, PointSink, Written};
 
 use crate::error::{Error, Result};
 use crate::shared_weights::SharedWeights;

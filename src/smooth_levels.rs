@@ -1,0 +1,134 @@
+//! Refined frames of a closed cage in closed form: each frame makes every level's points by the
+//! scheme's smooth rules, the step Catmull-Clark's limit takes on triangle cages
+//! ([`crate::quad_rings`]) and the one Loop's takes ([`crate::regular_rings`]), and the last
+//! level goes straight to the output.
+//!
+//! Why: a refined row of the horse at Catmull-Clark level 2 holds some 11 control points (8
+//! bytes each) and gathers them from anywhere in the cage; a step reads about 5 points of the
+//! level before, mostly near each other, and a face point 4. The last level is a quarter of the
+//! frame's points at most (the levels before are a quarter of it and less), so the frame costs
+//! little more than one level. The table's rows stay whole, for `stencils()` and the GPU.
+
+use crate::mesh::HalfEdgeMesh;
+use crate::quad_rings::QuadStep;
+use crate::regular_rings::{fan_masks, FanMasks, Step};
+use crate::stencil::{ClosedForms, Written};
+use std::borrow::Cow;
+
+/// Every level of a closed cage by one scheme's smooth rules.
+#[derive(Clone, Debug)]
+pub(crate) enum SmoothLevels {
+    /// Catmull-Clark: vertex points, face points, edge points (as `refine::pqq` numbers them).
+    Quads(Vec<QuadStep>),
+    /// Loop: vertex children, edge children (as `refine::ptq` numbers them), with each
+    /// valence's weights.
+    Triangles(Vec<Step>, Vec<FanMasks>),
+}
+
+impl SmoothLevels {
+    /// Catmull-Clark's `levels` levels of `base` on `outputs` points; `None` unless every level
+    /// before the last is a closed cage whose every vertex has a closed fan of 3 to
+    /// `MAX_VALENCE` faces.
+    pub(crate) fn catmull_clark(
+        base: &HalfEdgeMesh,
+        levels: usize,
+        outputs: usize,
+    ) -> Option<Self> {
+        let steps = catmull_clark_steps(base, levels)?;
+        (steps.last().map(QuadStep::outputs) == Some(outputs)).then_some(SmoothLevels::Quads(steps))
+    }
+
+    /// Loop's `levels` levels of `base` on `outputs` points; `None` unless every level before
+    /// the last is a closed triangle mesh with a closed fan at every vertex.
+    pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize, outputs: usize) -> Option<Self> {
+        let steps = levels_of(base, levels, Step::new, |mesh| {
+            let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
+            crate::refine::ptq::child_mesh(mesh, zeros)
+        })?;
+        (steps.last().map(Step::outputs) == Some(outputs))
+            .then(|| SmoothLevels::Triangles(steps, fan_masks()))
+    }
+
+    /// What this adds to the table's bytes: the steps' topology.
+    pub(crate) fn bytes(&self) -> u64 {
+        match self {
+            SmoothLevels::Quads(steps) => steps.iter().map(QuadStep::bytes).sum(),
+            SmoothLevels::Triangles(steps, _) => steps.iter().map(Step::bytes).sum(),
+        }
+    }
+}
+
+/// Catmull-Clark's steps of `levels` levels from `base` (see [`SmoothLevels::catmull_clark`]).
+pub(crate) fn catmull_clark_steps(base: &HalfEdgeMesh, levels: usize) -> Option<Vec<QuadStep>> {
+    levels_of(base, levels, QuadStep::new, |mesh| {
+        let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
+        crate::refine::pqq::child_mesh(mesh, zeros)
+    })
+}
+
+/// The steps of `levels` levels from `base`: `step` of each level's mesh, `child` making the
+/// next (the last level's mesh is not made: its points are the output).
+fn levels_of<S>(
+    base: &HalfEdgeMesh,
+    levels: usize,
+    step: impl Fn(&HalfEdgeMesh) -> Option<S>,
+    child: impl Fn(&HalfEdgeMesh) -> HalfEdgeMesh,
+) -> Option<Vec<S>> {
+    let mut steps = Vec::with_capacity(levels);
+    let mut mesh = Cow::Borrowed(base);
+    for level in 0..levels {
+        steps.push(step(&mesh)?);
+        if level + 1 < levels {
+            mesh = Cow::Owned(child(&mesh));
+        }
+    }
+    (levels > 0).then_some(steps)
+}
+
+/// The levels before the last, from the padded control points, then the last into `out`.
+fn run<S>(
+    steps: &[S],
+    control: &[[f32; 4]],
+    out: &mut [[f32; 3]],
+    padded: impl Fn(&S, &[[f32; 4]]) -> Vec<[f32; 4]>,
+    last: impl Fn(&S, &[[f32; 4]], &mut Written<'_>),
+) {
+    let Some((final_step, before)) = steps.split_last() else { return };
+    let mut points = Cow::Borrowed(control);
+    for step in before {
+        points = padded(step, &points).into();
+    }
+    last(final_step, &points, &mut Written::new(out));
+}
+
+impl ClosedForms for SmoothLevels {
+    fn rest(&self) -> &[u32] {
+        &[]
+    }
+
+    fn points(&self, control: &[[f32; 4]], positions: &mut [[f32; 3]]) {
+        match self {
+            SmoothLevels::Quads(steps) => {
+                run(steps, control, positions, QuadStep::padded, |s, p, out| s.apply(p, out))
+            }
+            SmoothLevels::Triangles(steps, masks) => run(
+                steps,
+                control,
+                positions,
+                |s, p| s.padded(p, masks),
+                |s, p, out| s.apply(p, masks, out),
+            ),
+        }
+    }
+
+    /// The points only: the levels serve evaluators without normals (Catmull-Clark's and
+    /// Loop's normals are the limit's, from the table's tangent rows).
+    fn points_and_normals(
+        &self,
+        control: &[[f32; 4]],
+        positions: &mut [[f32; 3]],
+        _normals: &mut [[f32; 3]],
+    ) {
+        self.points(control, positions);
+    }
+}
