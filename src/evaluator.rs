@@ -13,7 +13,7 @@ use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
 use crate::shared_weights::SharedWeights;
-use crate::smooth_levels::SmoothLevels;
+use crate::smooth_levels::{catmull_clark_steps, SmoothLevels};
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
@@ -38,7 +38,9 @@ enum NormalSource {
 /// ([`Evaluator::positions`]): an evaluator used frame by frame never needs them.
 #[derive(Clone, Debug)]
 pub struct Evaluator {
-    table: StencilTable,
+    table: Table,
+    num_control: usize,
+    outputs: usize,
     /// The output faces; the positions are left empty (see `at_build`).
     faces: PolyMesh,
     attributes: Vec<Attribute>,
@@ -65,6 +67,16 @@ pub struct Evaluator {
     shared: Option<SharedWeights>,
 }
 
+/// An evaluator's stencil table: made with it, or on first use ([`Evaluator::table`]) when a
+/// closed form gives every point, so that no frame reads it.
+#[derive(Clone, Debug)]
+enum Table {
+    Built(StencilTable),
+    /// The base mesh and the options that make it (such an evaluator has no tags and no
+    /// attributes), and the table once made.
+    Later(Box<(HalfEdgeMesh, Options)>, OnceLock<StencilTable>),
+}
+
 impl Evaluator {
     /// Refines `base` once as `options` and `tags` say, recording the stencils. `attributes`
     /// are the base mesh's channels: face-varying ones are refined now (their values are fixed
@@ -76,6 +88,11 @@ impl Evaluator {
         options: &Options,
         tags: &Tags,
     ) -> Result<Self> {
+        if attributes.is_empty() && tags.is_trivial() && !tags.smooth_triangles {
+            if let Some(evaluator) = Self::from_levels(base, options)? {
+                return Ok(evaluator);
+            }
+        }
         // Untagged Catmull-Clark at the limit only: tags can make any face irregular, and
         // other schemes' regular pieces are not these patches. With normals, the patches' and
         // the rows' tangents are both summed on differences (see `crate::patches`), so that
@@ -120,28 +137,10 @@ impl Evaluator {
         let quads = match (&patches, options.max_bytes.checked_sub(build.table.bytes())) {
             (None, Some(budget)) if patchable && !tags.smooth_triangles => {
                 let outputs = build.table.num_stencils();
-                QuadRings::new(base, options.levels(), &build.mesh, outputs)
-                    .filter(|quads| quads.bytes() <= budget)
-            }
-            _ => None,
-        };
-        // Refined frames of a closed cage untagged: the levels by the smooth rules. (With
-        // normals, Catmull-Clark's and Loop's are the limit's, from the table's tangent rows.)
-        let levels = match options.max_bytes.checked_sub(build.table.bytes()) {
-            Some(budget) if !options.limit && !options.normals && tags.is_trivial() => {
-                let outputs = build.table.num_stencils();
-                let made = match options.schemes.first() {
-                    Some(&Scheme::CatmullClark)
-                        if options.schemes.iter().all(|&s| s == Scheme::CatmullClark) =>
-                    {
-                        SmoothLevels::catmull_clark(base, options.levels(), outputs)
-                    }
-                    Some(&Scheme::Loop) if options.schemes.iter().all(|&s| s == Scheme::Loop) => {
-                        SmoothLevels::loop_(base, options.levels(), outputs)
-                    }
-                    _ => None,
-                };
-                made.filter(|levels| levels.bytes() <= budget)
+                let steps = catmull_clark_steps(base, options.levels()).map(|(steps, _)| steps);
+                steps
+                    .and_then(|steps| QuadRings::new(steps, &build.mesh))
+                    .filter(|quads| quads.num_points() == outputs && quads.bytes() <= budget)
             }
             _ => None,
         };
@@ -174,7 +173,9 @@ impl Evaluator {
             _ => None,
         };
         Ok(Evaluator {
-            table: build.table,
+            num_control: build.table.num_control_vertices(),
+            outputs: build.table.num_stencils(),
+            table: Table::Built(build.table),
             faces: build.mesh,
             attributes: channels,
             control: base.positions.as_flattened().to_vec(),
@@ -183,14 +184,75 @@ impl Evaluator {
             patches,
             rings,
             quads,
-            levels,
+            levels: None,
             shared,
         })
     }
 
-    /// The stencil table (positions, and the tangents' weights when normals come from it).
-    pub fn table(&self) -> &StencilTable {
-        &self.table
+    /// An evaluator whose closed form gives every point from the levels' smooth rules, on a
+    /// closed cage: refined points (`crate::smooth_levels`), or Catmull-Clark's limit where no
+    /// base face is a regular patch (`crate::quad_rings`). It holds the output faces and the
+    /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
+    /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
+    fn from_levels(base: &HalfEdgeMesh, options: &Options) -> Result<Option<Self>> {
+        crate::predict::check_guards(base, options)?;
+        let levels = options.levels();
+        let all =
+            |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
+        let (mut refined, mut quads) = (None, None);
+        let faces = if !options.limit && !options.normals && all(Scheme::CatmullClark) {
+            SmoothLevels::catmull_clark(base, levels)
+                .map(|(form, faces)| (refined = Some(form), faces).1)
+        } else if !options.limit && !options.normals && all(Scheme::Loop) {
+            SmoothLevels::loop_(base, levels).map(|(form, faces)| (refined = Some(form), faces).1)
+        } else if options.limit && all(Scheme::CatmullClark) && !crate::patches::any_regular(base) {
+            catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
+                quads = Some(QuadRings::new(steps, &faces)?);
+                Some(faces)
+            })
+        } else {
+            None
+        };
+        let Some(faces) = faces else { return Ok(None) };
+        let (outputs, bytes) = match (&refined, &quads) {
+            (Some(levels), _) => (levels.outputs(), levels.bytes()),
+            (None, Some(quads)) => (quads.num_points(), quads.bytes()),
+            (None, None) => return Ok(None),
+        };
+        if bytes > options.max_bytes {
+            return Ok(None);
+        }
+        Ok(Some(Evaluator {
+            table: Table::Later(Box::new((base.clone(), options.clone())), OnceLock::new()),
+            num_control: base.num_vertices(),
+            outputs,
+            faces,
+            attributes: Vec::new(),
+            control: base.positions.as_flattened().to_vec(),
+            at_build: OnceLock::new(),
+            source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
+            patches: None,
+            rings: None,
+            quads,
+            levels: refined,
+            shared: None,
+        }))
+    }
+
+    /// The stencil table (positions, and the tangents' weights when normals come from it),
+    /// made on first use when the evaluator left it out (see [`Evaluator::step_vertices`]):
+    /// then [`Error::TooLarge`] when it passes the options' `max_bytes`.
+    pub fn table(&self) -> Result<&StencilTable> {
+        let (recipe, made) = match &self.table {
+            Table::Built(table) => return Ok(table),
+            Table::Later(recipe, made) => (recipe, made),
+        };
+        if let Some(table) = made.get() {
+            return Ok(table);
+        }
+        let (base, options) = &**recipe;
+        let build = build_stencils(base, &[], options, &Tags::default(), None)?;
+        Ok(made.get_or_init(|| build.table))
     }
 
     /// The output faces: vertex indices, listed face after face.
@@ -246,7 +308,7 @@ impl Evaluator {
 
     /// Number of control (base) vertices the evaluator reads.
     pub fn num_control_vertices(&self) -> usize {
-        self.table.num_control_vertices()
+        self.num_control
     }
 
     /// How many output vertices [`Evaluator::evaluate`] computes as bicubic patches rather than
@@ -285,12 +347,16 @@ impl Evaluator {
     pub fn bytes(&self) -> u64 {
         let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
         let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes);
-        self.table.bytes() + self.rings.as_ref().map_or(quads, RegularRings::bytes) + levels
+        let table = match &self.table {
+            Table::Built(table) => table.bytes(),
+            Table::Later(..) => 0,
+        };
+        table + self.rings.as_ref().map_or(quads, RegularRings::bytes) + levels
     }
 
     /// Number of output vertices.
     pub fn num_vertices(&self) -> usize {
-        self.table.num_stencils()
+        self.outputs
     }
 
     /// The output positions (and, when asked for at build time, unit normals) for new
@@ -349,11 +415,16 @@ impl Evaluator {
                 (NormalSource::Tangents, Some(normals)) => {
                     let (normals, _) = normals.as_chunks_mut::<3>();
                     let (rest, shared) = (closed.rest(), self.shared.as_ref());
-                    self.table.points_and_normals(&control, rest, positions, normals, shared);
+                    if !rest.is_empty() {
+                        self.table()?
+                            .points_and_normals(&control, rest, positions, normals, shared);
+                    }
                     closed.points_and_normals(&control, positions, normals);
                 }
                 _ => {
-                    self.table.points(&control, closed.rest(), positions);
+                    if !closed.rest().is_empty() {
+                        self.table()?.points(&control, closed.rest(), positions);
+                    }
                     closed.points(&control, positions);
                 }
             }
@@ -366,13 +437,19 @@ impl Evaluator {
                     let (positions, _) = positions.as_chunks_mut::<3>();
                     let (normals, _) = normals.as_chunks_mut::<3>();
                     let rows = AllRows(self.num_vertices());
-                    self.table.points_and_normals(&control, rows, positions, normals, Some(shared));
+                    self.table()?.points_and_normals(
+                        &control,
+                        rows,
+                        positions,
+                        normals,
+                        Some(shared),
+                    );
                     Ok(())
                 }
-                None => self.table.evaluate_with_normals(control, positions, normals),
+                None => self.table()?.evaluate_with_normals(control, positions, normals),
             },
             (NormalSource::Faces, Some(normals)) => {
-                self.table.evaluate(control, 3, positions)?;
+                self.table()?.evaluate(control, 3, positions)?;
                 let mesh = &self.faces;
                 crate::limit::face_normals_into(
                     positions,
@@ -382,7 +459,7 @@ impl Evaluator {
                 );
                 Ok(())
             }
-            _ => self.table.evaluate(control, 3, positions),
+            _ => self.table()?.evaluate(control, 3, positions),
         }
     }
 
@@ -407,7 +484,7 @@ impl Evaluator {
                 crate::mesh::unusable_because(values[i], "value")
             )));
         }
-        self.table.evaluate(values, width, out)
+        self.table()?.evaluate(values, width, out)
     }
 }
 
@@ -537,7 +614,11 @@ mod tests {
         let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
         evaluator.evaluate(&control, &mut positions, Some(&mut normals)).unwrap();
         let (mut want, mut want_normals) = (vec![0.0; n], vec![0.0; n]);
-        evaluator.table().evaluate_with_normals(&control, &mut want, &mut want_normals).unwrap();
+        evaluator
+            .table()
+            .unwrap()
+            .evaluate_with_normals(&control, &mut want, &mut want_normals)
+            .unwrap();
         let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&positions), bits(&want));
         assert_eq!(bits(&normals), bits(&want_normals));

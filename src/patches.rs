@@ -304,6 +304,13 @@ impl ClosedForms for RegularPatches {
     }
 }
 
+/// Whether any face of `base` is a regular patch (see [`RegularPatches::new`]).
+pub(crate) fn any_regular(base: &HalfEdgeMesh) -> bool {
+    base.has_simple_edges()
+        && !base.is_non_manifold()
+        && (0..base.num_cells()).any(|c| regular_controls(base, c).is_some())
+}
+
 /// The uniform cubic B-spline basis and its derivative at `t` in `[0, 1]`.
 fn bspline(t: f32) -> [[f32; 4]; 2] {
     let s = 1.0 - t;

@@ -201,21 +201,12 @@ impl LimitMasks {
 }
 
 impl QuadRings {
-    /// Catmull-Clark's limit on `levels` levels of `base` (every level Catmull-Clark's, no
-    /// tags) whose last level is the quads `faces` on `outputs` vertices, numbered as
-    /// `refine::pqq` numbers them; `None` unless `base` is a closed cage whose every vertex
-    /// has a closed fan of 3 to [`MAX_VALENCE`] faces.
-    pub(crate) fn new(
-        base: &HalfEdgeMesh,
-        levels: usize,
-        faces: &PolyMesh,
-        outputs: usize,
-    ) -> Option<Self> {
-        if levels == 0 || faces.face_sizes.iter().any(|&n| n != 4) {
-            return None;
-        }
-        let steps = crate::smooth_levels::catmull_clark_steps(base, levels)?;
-        if steps.last().map(QuadStep::outputs) != Some(outputs) {
+    /// Catmull-Clark's limit from `steps`, every level of a closed cage
+    /// ([`crate::smooth_levels::catmull_clark_steps`]), whose last level is the quads `faces`;
+    /// `None` unless every vertex of that level has a closed ring.
+    pub(crate) fn new(steps: Vec<QuadStep>, faces: &PolyMesh) -> Option<Self> {
+        let outputs = steps.last()?.outputs();
+        if faces.face_sizes.iter().any(|&n| n != 4) {
             return None;
         }
         // Each corner's (next, opposite, previous) vertex: the fan's steps.

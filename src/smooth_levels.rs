@@ -9,7 +9,7 @@
 //! frame's points at most (the levels before are a quarter of it and less), so the frame costs
 //! little more than one level. The table's rows stay whole, for `stencils()` and the GPU.
 
-use crate::mesh::HalfEdgeMesh;
+use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::quad_rings::QuadStep;
 use crate::regular_rings::{fan_masks, FanMasks, Step};
 use crate::stencil::{ClosedForms, Written};
@@ -26,30 +26,35 @@ pub(crate) enum SmoothLevels {
 }
 
 impl SmoothLevels {
-    /// Catmull-Clark's `levels` levels of `base` on `outputs` points; `None` unless every level
-    /// before the last is a closed cage whose every vertex has a closed fan of 3 to
-    /// `MAX_VALENCE` faces.
-    pub(crate) fn catmull_clark(
-        base: &HalfEdgeMesh,
-        levels: usize,
-        outputs: usize,
-    ) -> Option<Self> {
-        let steps = catmull_clark_steps(base, levels)?;
-        (steps.last().map(QuadStep::outputs) == Some(outputs)).then_some(SmoothLevels::Quads(steps))
+    /// Catmull-Clark's `levels` levels of `base`, with the output faces (quads, as
+    /// `refine::pqq` lists them; no positions); `None` unless every level before the last is a
+    /// closed cage whose every vertex has a closed fan of 3 to `MAX_VALENCE` faces.
+    pub(crate) fn catmull_clark(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
+        let (steps, faces) = catmull_clark_steps(base, levels)?;
+        Some((SmoothLevels::Quads(steps), faces))
     }
 
-    /// Loop's `levels` levels of `base` on `outputs` points; `None` unless every level before
-    /// the last is a closed triangle mesh with a closed fan at every vertex.
-    pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize, outputs: usize) -> Option<Self> {
-        let steps = levels_of(base, levels, Step::new, |mesh| {
+    /// Loop's `levels` levels of `base`, with the output faces (triangles, as `refine::ptq`
+    /// lists them); `None` unless every level before the last is a closed triangle mesh with a
+    /// closed fan at every vertex.
+    pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
+        let (steps, last) = levels_of(base, levels, Step::new, |mesh| {
             let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
             crate::refine::ptq::child_mesh(mesh, zeros)
         })?;
-        (steps.last().map(Step::outputs) == Some(outputs))
-            .then(|| SmoothLevels::Triangles(steps, fan_masks()))
+        let faces = faces_of(crate::refine::ptq::child_face_indices(&last), 3);
+        Some((SmoothLevels::Triangles(steps, fan_masks()), faces))
     }
 
-    /// What this adds to the table's bytes: the steps' topology.
+    /// Number of output points.
+    pub(crate) fn outputs(&self) -> usize {
+        match self {
+            SmoothLevels::Quads(steps) => steps.last().map_or(0, QuadStep::outputs),
+            SmoothLevels::Triangles(steps, _) => steps.last().map_or(0, Step::outputs),
+        }
+    }
+
+    /// What a frame reads besides its input: the steps' topology.
     pub(crate) fn bytes(&self) -> u64 {
         match self {
             SmoothLevels::Quads(steps) => steps.iter().map(QuadStep::bytes).sum(),
@@ -58,22 +63,34 @@ impl SmoothLevels {
     }
 }
 
-/// Catmull-Clark's steps of `levels` levels from `base` (see [`SmoothLevels::catmull_clark`]).
-pub(crate) fn catmull_clark_steps(base: &HalfEdgeMesh, levels: usize) -> Option<Vec<QuadStep>> {
-    levels_of(base, levels, QuadStep::new, |mesh| {
+/// Catmull-Clark's steps of `levels` levels from `base`, with the output faces (see
+/// [`SmoothLevels::catmull_clark`]).
+pub(crate) fn catmull_clark_steps(
+    base: &HalfEdgeMesh,
+    levels: usize,
+) -> Option<(Vec<QuadStep>, PolyMesh)> {
+    let (steps, last) = levels_of(base, levels, QuadStep::new, |mesh| {
         let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
         crate::refine::pqq::child_mesh(mesh, zeros)
-    })
+    })?;
+    Some((steps, faces_of(crate::refine::pqq::child_face_indices(&last), 4)))
 }
 
-/// The steps of `levels` levels from `base`: `step` of each level's mesh, `child` making the
-/// next (the last level's mesh is not made: its points are the output).
-fn levels_of<S>(
-    base: &HalfEdgeMesh,
+/// Faces of `n` corners each, without positions.
+fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
+    let face_sizes = vec![n; indices.len() / n as usize];
+    PolyMesh { positions: Vec::new(), indices, face_sizes }
+}
+
+/// The steps of `levels` levels from `base` and the mesh of the level before the last: `step`
+/// of each level's mesh, `child` making the next (the last level's mesh is not made: its
+/// points are the output).
+fn levels_of<'b, S>(
+    base: &'b HalfEdgeMesh,
     levels: usize,
     step: impl Fn(&HalfEdgeMesh) -> Option<S>,
     child: impl Fn(&HalfEdgeMesh) -> HalfEdgeMesh,
-) -> Option<Vec<S>> {
+) -> Option<(Vec<S>, Cow<'b, HalfEdgeMesh>)> {
     let mut steps = Vec::with_capacity(levels);
     let mut mesh = Cow::Borrowed(base);
     for level in 0..levels {
@@ -82,7 +99,7 @@ fn levels_of<S>(
             mesh = Cow::Owned(child(&mesh));
         }
     }
-    (levels > 0).then_some(steps)
+    (levels > 0).then_some((steps, mesh))
 }
 
 /// The levels before the last, from the padded control points, then the last into `out`.

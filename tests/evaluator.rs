@@ -164,7 +164,7 @@ fn rows_are_affine_and_tangent_rows_sum_to_zero() {
     let evaluator =
         Evaluator::new(&base, &[], &options(Scheme::CatmullClark, 2, true, true), &Tags::default())
             .unwrap();
-    let table = evaluator.table();
+    let table = evaluator.table().unwrap();
     let [first, second] = table.tangent_weights().expect("a table with normals has tangents");
     for row in table.offsets().windows(2) {
         let range = row[0] as usize..row[1] as usize;
@@ -342,7 +342,7 @@ fn a_scattered_vertex_order_gives_the_same_table_renamed() {
             Evaluator::new(&base, attributes, &options, tags).unwrap()
         };
         let (ordered, scattered) = (build(mesh), build(&shuffled));
-        let (a, b) = (ordered.table(), scattered.table());
+        let (a, b) = (ordered.table().unwrap(), scattered.table().unwrap());
         assert_eq!(a.num_stencils(), b.num_stencils(), "{what}");
         let source = |row: usize| if row < n { unshuffle[row] } else { row };
         let rows =
@@ -458,7 +458,7 @@ fn frame_equals_the_rows(
     let (mut positions, mut got_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
     evaluator.evaluate(control, &mut positions, normals.then_some(&mut got_normals)).unwrap();
     let (mut rows, mut row_normals) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
-    evaluator.table().evaluate_with_normals(control, &mut rows, &mut row_normals).unwrap();
+    evaluator.table().unwrap().evaluate_with_normals(control, &mut rows, &mut row_normals).unwrap();
     assert_close(&positions, &rows, 1e-5 * diagonal(&rows), what);
     if normals {
         assert_close(&got_normals, &row_normals, 1e-5, &format!("{what}: normals"));
@@ -611,4 +611,50 @@ fn refined_frames_from_the_levels_equal_the_tables_rows() {
     )
     .unwrap();
     assert_eq!(evaluator.step_vertices(), 0, "a boundary keeps the rows");
+}
+
+/// An evaluator whose levels give every point (`Evaluator::step_vertices`, and Catmull-Clark's
+/// limit on a triangle cage) leaves its table out: no frame reads it. It is made on first use
+/// and is the table an evaluator that builds it at once holds (one with a vertex-varying
+/// channel, whose frames read the rows), bit for bit; `bytes` counts the levels only until
+/// then. With `max_bytes` below the table's size (but above the levels' and the result's), the
+/// evaluator is built and runs, and its table is refused.
+#[test]
+fn a_table_left_out_is_made_on_first_use() {
+    let mesh = icosahedron();
+    let base = HalfEdgeMesh::from_poly(&mesh).unwrap();
+    let colour = Attribute::vertex("colour", 1, (0..12).map(|v| v as f32).collect());
+    let mut refused = 0;
+    for (scheme, limit) in
+        [(Scheme::CatmullClark, false), (Scheme::Loop, false), (Scheme::CatmullClark, true)]
+    {
+        let options = options(scheme, 3, limit, limit);
+        let what = format!("{scheme}, limit {limit}");
+        let lazy = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+        let eager =
+            Evaluator::new(&base, std::slice::from_ref(&colour), &options, &Tags::default());
+        let eager = eager.unwrap();
+        let levels_only = lazy.bytes();
+        assert!(levels_only < eager.bytes(), "{what}: {levels_only} bytes");
+        assert_eq!(lazy.table().unwrap(), eager.table().unwrap(), "{what}");
+        let table_bytes = lazy.table().unwrap().bytes();
+        // At least the result's own arrays, which every call may take (Loop's refined table
+        // is smaller than those: no such limit).
+        let result = subsurf::scheme::predict(&base, &options).bytes();
+        let small = Options { max_bytes: levels_only.max(result), ..options.clone() };
+        if small.max_bytes >= table_bytes {
+            continue;
+        }
+        refused += 1;
+        let evaluator = Evaluator::new(&base, &[], &small, &Tags::default()).unwrap();
+        let err = evaluator.table().unwrap_err();
+        assert!(matches!(&err, Error::TooLarge(m) if m.contains("stencil table")), "{what}: {err}");
+        // The frames still run.
+        let n = 3 * evaluator.num_vertices();
+        let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+        let normals = limit.then_some(&mut normals[..]);
+        evaluator.evaluate(&deform(&mesh.positions, 0.3), &mut positions, normals).unwrap();
+        assert!(positions.iter().any(|&x| x != 0.0), "{what}");
+    }
+    assert_eq!(refused, 2);
 }

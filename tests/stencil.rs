@@ -310,7 +310,9 @@ fn regular_patches_give_the_tables_points_and_normals() {
                 // the evaluator's own table takes the patches' points' rows from the patches.
                 let (composed, _) = stencil_table_mesh(&base, &options, &Tags::default()).unwrap();
                 let what = format!("{name} level {levels} normals {normals}");
-                for (table, which) in [(&composed, "composed rows"), (evaluator.table(), "table")] {
+                for (table, which) in
+                    [(&composed, "composed rows"), (evaluator.table().unwrap(), "table")]
+                {
                     table
                         .evaluate_with_normals(&mesh.positions, &mut want, &mut want_normal)
                         .unwrap();
@@ -365,12 +367,12 @@ fn max_bytes_counts_a_limit_table_with_its_tangents() {
     let tags = Tags::default();
     let options = Options { limit: true, normals: true, ..Options::new(Scheme::CatmullClark, 2) };
     let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
-    let table = evaluator.table();
+    let table = evaluator.table().unwrap();
     assert!(table.tangent_weights().is_some());
     let entries = table.indices().len() as u64;
     assert_eq!(table.bytes(), 4 * (table.num_stencils() as u64 + 1) + 16 * entries);
     let just = Options { max_bytes: table.bytes(), ..options.clone() };
-    assert_eq!(Evaluator::new(&base, &[], &just, &tags).unwrap().table(), table);
+    assert_eq!(Evaluator::new(&base, &[], &just, &tags).unwrap().table().unwrap(), table);
     let below = Options { max_bytes: table.bytes() - 1, ..options.clone() };
     let err = Evaluator::new(&base, &[], &below, &tags).unwrap_err();
     assert!(matches!(&err, Error::TooLarge(m) if m.contains("stencil table")), "{err}");

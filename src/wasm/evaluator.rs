@@ -132,7 +132,7 @@ impl Evaluator {
     /// on the same entries (the normal is their cross product, normalised).
     #[wasm_bindgen(unchecked_return_type = "StencilArrays")]
     pub fn stencils(&self) -> JsResult<JsValue> {
-        let table = self.inner.table();
+        let table = self.inner.table().map_err(js_error)?;
         let object = Object::new();
         set_field(&object, "offsets", &Uint32Array::from(table.offsets()))?;
         set_field(&object, "indices", &Uint32Array::from(table.indices()))?;
@@ -149,10 +149,11 @@ impl Evaluator {
         Ok(object.into())
     }
 
-    /// Bytes of the stencil table (4 per offset, 8 per entry, 16 with tangent weights).
+    /// Bytes of the stencil table (4 per offset, 8 per entry, 16 with tangent weights); an
+    /// evaluator that left its table out (see `bytes`) makes it here, as `stencils()` does.
     #[wasm_bindgen(getter, js_name = stencilBytes)]
-    pub fn stencil_bytes(&self) -> f64 {
-        self.inner.table().bytes() as f64
+    pub fn stencil_bytes(&self) -> JsResult<f64> {
+        Ok(self.inner.table().map_err(js_error)?.bytes() as f64)
     }
 
     /// Bytes of everything a frame reads besides its input: the stencil table and, for Loop at
