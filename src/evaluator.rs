@@ -199,12 +199,14 @@ impl Evaluator {
         let levels = options.levels();
         let all =
             |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
-        let (mut refined, mut quads) = (None, None);
+        let (mut refined, mut rings, mut quads) = (None, None, None);
         let faces = if !options.limit && !options.normals && all(Scheme::CatmullClark) {
             SmoothLevels::catmull_clark(base, levels)
                 .map(|(form, faces)| (refined = Some(form), faces).1)
         } else if !options.limit && !options.normals && all(Scheme::Loop) {
             SmoothLevels::loop_(base, levels).map(|(form, faces)| (refined = Some(form), faces).1)
+        } else if options.limit && all(Scheme::Loop) {
+            closed_loop_rings(base, levels).map(|(form, faces)| (rings = Some(form), faces).1)
         } else if options.limit && all(Scheme::CatmullClark) && !crate::patches::any_regular(base) {
             catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
                 quads = Some(QuadRings::new(steps, &faces)?);
@@ -214,10 +216,11 @@ impl Evaluator {
             None
         };
         let Some(faces) = faces else { return Ok(None) };
-        let (outputs, bytes) = match (&refined, &quads) {
-            (Some(levels), _) => (levels.outputs(), levels.bytes()),
-            (None, Some(quads)) => (quads.num_points(), quads.bytes()),
-            (None, None) => return Ok(None),
+        let (outputs, bytes) = match (&refined, &rings, &quads) {
+            (Some(levels), ..) => (levels.outputs(), levels.bytes()),
+            (None, Some(rings), _) => (rings.num_points(), rings.bytes()),
+            (None, None, Some(quads)) => (quads.num_points(), quads.bytes()),
+            (None, None, None) => return Ok(None),
         };
         if bytes > options.max_bytes {
             return Ok(None);
@@ -232,7 +235,7 @@ impl Evaluator {
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
             patches: None,
-            rings: None,
+            rings,
             quads,
             levels: refined,
             shared: None,
@@ -340,10 +343,12 @@ impl Evaluator {
         self.levels.as_ref().map_or(0, |_| self.num_vertices())
     }
 
-    /// Bytes of what a frame reads besides its input: the table, and for the closed forms
-    /// ([`Evaluator::ring_vertices`]) the levels' topology or the level before's own table and
-    /// the cases (indices of the points each reads), which `options.max_bytes` bounds with the
-    /// table.
+    /// Bytes of what a frame reads besides its input: the table when frames read it, and for
+    /// the closed forms ([`Evaluator::ring_vertices`], [`Evaluator::step_vertices`]) the
+    /// levels' topology or the level before's own table and the cases (indices of the points
+    /// each reads), which `options.max_bytes` bounds with the table. An evaluator whose closed
+    /// forms give every point makes its table on first use ([`Evaluator::table`]) and counts
+    /// none here.
     pub fn bytes(&self) -> u64 {
         let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
         let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes);
@@ -533,25 +538,7 @@ fn regular_rings(
     // A mesh's cells are its half-edges in order, so their corners are `he_from`.
     let rings = if levels == 1 {
         RegularRings::new(&base.he_from, base.num_vertices(), children, outputs, Previous::Control)?
-    } else if let Some((mut steps, meshes)) = smooth_steps(base, levels - 1) {
-        // A closed mesh: the level before by Loop's rules, level by level, on the levels'
-        // topology alone (`refine::ptq`, which numbers them as the refinement does).
-        let [before, last] = &meshes;
-        let previous = if levels >= 3 {
-            // From level 3 the vertex children come from the level before's own closed forms
-            // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
-            let step = steps.pop()?;
-            let inner = RegularRings::new(
-                &before.he_from,
-                before.num_vertices(),
-                &last.he_from,
-                last.num_vertices(),
-                if steps.is_empty() { Previous::Control } else { Previous::Steps(steps) },
-            )?;
-            Previous::Nested(Box::new(inner), step)
-        } else {
-            Previous::Steps(steps)
-        };
+    } else if let Some((previous, last)) = closed_previous(base, levels) {
         RegularRings::new(&last.he_from, last.num_vertices(), children, outputs, previous)?
     } else {
         let previous = Options {
@@ -567,6 +554,51 @@ fn regular_rings(
         RegularRings::new(&build.mesh.indices, vertices, children, outputs, previous)?
     };
     (rings.bytes() <= budget).then_some(rings)
+}
+
+/// The level before the last of Loop's `levels` (2 or more) on a closed cage, by Loop's rules,
+/// level by level, on the levels' topology alone (`refine::ptq`, which numbers them as the
+/// refinement does), with that level's mesh; `None` unless every level is a closed mesh with a
+/// closed fan at every vertex.
+fn closed_previous(
+    base: &HalfEdgeMesh,
+    levels: usize,
+) -> Option<(Previous, std::borrow::Cow<'_, HalfEdgeMesh>)> {
+    let (mut steps, [before, last]) = smooth_steps(base, levels.checked_sub(1)?)?;
+    let previous = if levels >= 3 {
+        // From level 3 the vertex children come from the level before's own closed forms
+        // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
+        let step = steps.pop()?;
+        let inner = RegularRings::new(
+            &before.he_from,
+            before.num_vertices(),
+            &last.he_from,
+            last.num_vertices(),
+            if steps.is_empty() { Previous::Control } else { Previous::Steps(steps) },
+        )?;
+        Previous::Nested(Box::new(inner), step)
+    } else {
+        Previous::Steps(steps)
+    };
+    Some((previous, last))
+}
+
+/// Loop's limit on a closed cage when its closed forms give every point, with the output
+/// faces (as `refine::ptq` lists them), for an evaluator that leaves its table out.
+fn closed_loop_rings(base: &HalfEdgeMesh, levels: usize) -> Option<(RegularRings, PolyMesh)> {
+    if !base.has_simple_edges() || base.is_non_manifold() {
+        return None;
+    }
+    let (previous, last) = match levels {
+        0 => return None,
+        1 => (Previous::Control, std::borrow::Cow::Borrowed(base)),
+        _ => closed_previous(base, levels)?,
+    };
+    let faces = crate::smooth_levels::faces_of(crate::refine::ptq::child_face_indices(&last), 3);
+    let outputs = crate::refine::ptq::num_child_vertices(&last);
+    let (parents, vertices) = (&last.he_from, last.num_vertices());
+    let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous)?;
+    (rings.num_points() == outputs && rings.rest().is_empty()).then_some((rings, faces))
 }
 
 /// Loop's smooth rules for `levels` levels from `base` ([`Step`]) and the meshes of the last

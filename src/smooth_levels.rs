@@ -77,7 +77,7 @@ pub(crate) fn catmull_clark_steps(
 }
 
 /// Faces of `n` corners each, without positions.
-fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
+pub(crate) fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
     let face_sizes = vec![n; indices.len() / n as usize];
     PolyMesh { positions: Vec::new(), indices, face_sizes }
 }

@@ -156,8 +156,9 @@ impl Evaluator {
         Ok(self.inner.table().map_err(js_error)?.bytes() as f64)
     }
 
-    /// Bytes of everything a frame reads besides its input: the stencil table and, for Loop at
-    /// the limit, the closed forms' data (the level before's table and the points each reads).
+    /// Bytes of everything a frame reads besides its input: the stencil table when frames read
+    /// it, and the closed forms' data (the levels' topology, the points each reads). An
+    /// evaluator whose closed forms give every point (see `stencilBytes`) counts no table.
     #[wasm_bindgen(getter)]
     pub fn bytes(&self) -> f64 {
         self.inner.bytes() as f64
