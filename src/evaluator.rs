@@ -139,7 +139,7 @@ impl Evaluator {
                 let outputs = build.table.num_stencils();
                 let steps = catmull_clark_steps(base, options.levels()).map(|(steps, _)| steps);
                 steps
-                    .and_then(|steps| QuadRings::new(steps, &build.mesh))
+                    .and_then(|steps| QuadRings::new(steps, &build.mesh, true))
                     .filter(|quads| quads.num_points() == outputs && quads.bytes() <= budget)
             }
             _ => None,
@@ -190,8 +190,9 @@ impl Evaluator {
     }
 
     /// An evaluator whose closed form gives every point from the levels' smooth rules, on a
-    /// closed cage: refined points (`crate::smooth_levels`), or Catmull-Clark's limit where no
-    /// base face is a regular patch (`crate::quad_rings`). It holds the output faces and the
+    /// closed cage: refined points (`crate::smooth_levels`); Catmull-Clark's limit where no
+    /// base face is a regular patch, or its refined points with the limit's normals
+    /// (`crate::quad_rings`); Loop's limit (`crate::regular_rings`). It holds the output faces and the
     /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
     /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
     fn from_levels(base: &HalfEdgeMesh, options: &Options) -> Result<Option<Self>> {
@@ -207,9 +208,12 @@ impl Evaluator {
             SmoothLevels::loop_(base, levels).map(|(form, faces)| (refined = Some(form), faces).1)
         } else if options.limit && all(Scheme::Loop) {
             closed_loop_rings(base, levels).map(|(form, faces)| (rings = Some(form), faces).1)
-        } else if options.limit && all(Scheme::CatmullClark) && !crate::patches::any_regular(base) {
+        } else if all(Scheme::CatmullClark)
+            && (!options.limit || !crate::patches::any_regular(base))
+        {
+            // The limit (where no patch is), or refined points with the limit's normals.
             catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
-                quads = Some(QuadRings::new(steps, &faces)?);
+                quads = Some(QuadRings::new(steps, &faces, options.limit)?);
                 Some(faces)
             })
         } else {

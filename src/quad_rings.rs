@@ -39,6 +39,9 @@ pub(crate) struct QuadRings {
     /// Per valence (up to [`MAX_VALENCE`]), the limit masks' weights.
     masks: Vec<LimitMasks>,
     outputs: usize,
+    /// False for refined points with limit normals (`normals` without `limit`): the points
+    /// are the last level's own, the normals the limit's.
+    limit: bool,
 }
 
 /// One level of Catmull and Clark's smooth rules on a closed cage whose every vertex has a
@@ -203,8 +206,9 @@ impl LimitMasks {
 impl QuadRings {
     /// Catmull-Clark's limit from `steps`, every level of a closed cage
     /// ([`crate::smooth_levels::catmull_clark_steps`]), whose last level is the quads `faces`;
-    /// `None` unless every vertex of that level has a closed ring.
-    pub(crate) fn new(steps: Vec<QuadStep>, faces: &PolyMesh) -> Option<Self> {
+    /// `None` unless every vertex of that level has a closed ring. Without `limit`, the points
+    /// are the last level's own (the normals still the limit's).
+    pub(crate) fn new(steps: Vec<QuadStep>, faces: &PolyMesh, limit: bool) -> Option<Self> {
         let outputs = steps.last()?.outputs();
         if faces.face_sizes.iter().any(|&n| n != 4) {
             return None;
@@ -233,7 +237,7 @@ impl QuadRings {
         let masks = (0..=MAX_VALENCE)
             .map(|n| if n >= 3 { LimitMasks::new(n) } else { LimitMasks::default() })
             .collect();
-        Some(QuadRings { steps, regular, others, other_rings, masks, outputs })
+        Some(QuadRings { steps, regular, others, other_rings, masks, outputs, limit })
     }
 
     /// Number of output vertices they give: all of them.
@@ -272,7 +276,10 @@ impl QuadRings {
             let [v, e0, f0, e1, f1, e2, f2, e3, f3] = case.map(at_byte);
             let edges = e0.add(e1).add(e2.add(e3));
             let faces = f0.add(f1).add(f2.add(f3));
-            let point = faces.add_lanes(edges, 4.0).add_lanes(v, 16.0).scale(1.0 / 36.0);
+            let point = match self.limit {
+                true => faces.add_lanes(edges, 4.0).add_lanes(v, 16.0).scale(1.0 / 36.0),
+                false => v,
+            };
             let (f03, f12) = (f0.sub(f2), f1.sub(f3));
             let t1 = f03.sub(f12).add_lanes(e0.sub(e2), 4.0);
             let t2 = f03.add(f12).add_lanes(e1.sub(e3), 4.0);
@@ -293,7 +300,10 @@ impl QuadRings {
                 t1 = t1.add_lanes(e, on_edge[0]).add_lanes(f, on_face[0]);
                 t2 = t2.add_lanes(e, on_edge[1]).add_lanes(f, on_face[1]);
             }
-            let point = centre.add_lanes(faces, m.face).add_lanes(edges, m.edge);
+            let point = match self.limit {
+                true => centre.add_lanes(faces, m.face).add_lanes(edges, m.edge),
+                false => centre,
+            };
             emit(v as usize, point, [t1, t2]);
         }
     }

@@ -558,7 +558,9 @@ fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
 
 /// Refined frames of a closed cage untagged (`Evaluator::step_vertices`: every level by
 /// Catmull and Clark's or Loop's smooth rules each frame, the last written to the output) give
-/// what the table's own rows give and what `subdivide` gives, at levels 1 to 3: Catmull-Clark on triangle cages (an icosahedron; a torus of triangles
+/// what the table's own rows give and what `subdivide` gives, at levels 1 to 3 (Catmull-Clark's
+/// with normals too: the last level's points with the limit's normals on its rings,
+/// `crate::quad_rings`): Catmull-Clark on triangle cages (an icosahedron; a torus of triangles
 /// with flipped diagonals, valences 5 to 7), a cube (valence 3), a dodecahedron (pentagons) and
 /// a quad torus; Loop on the two triangle cages. A cage with a boundary keeps its rows. It
 /// fails with the vertex rule's `1/n²` made `1/(n² + 1)`, or Loop's edge weight 3/8 made 0.37
@@ -598,6 +600,15 @@ fn refined_frames_from_the_levels_equal_the_tables_rows() {
             assert_eq!(evaluator.step_vertices(), evaluator.num_vertices(), "{what}");
             compared += frame_equals_the_rows(&evaluator, &control, false, &what);
             check(&mesh, &[], &options(scheme, levels, false, false), &Tags::default(), &what);
+            if scheme == Scheme::CatmullClark {
+                // With normals: the last level's points, the limit's normals on its rings.
+                let options = options(scheme, levels, false, true);
+                let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+                let what = format!("{what}, normals");
+                assert_eq!(evaluator.ring_vertices(), evaluator.num_vertices(), "{what}");
+                compared += frame_equals_the_rows(&evaluator, &control, true, &what);
+                check(&mesh, &[], &options, &Tags::default(), &what);
+            }
         }
     }
     assert!(compared > 10_000, "only {compared} points");
