@@ -466,6 +466,20 @@ fn frame_equals_the_rows(
     n
 }
 
+/// A torus of triangles (radii 1 and 0.35) with the diagonal of every third quad flipped:
+/// valences 5 and 7 around those, 6 elsewhere.
+fn flipped_torus(rings: u32, segments: u32) -> PolyMesh {
+    let mut flipped = torus_triangles(rings, segments, 1.0, 0.35);
+    for quad in (0..flipped.indices.len() / 6).step_by(3) {
+        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
+        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
+        if t[3] == a && t[4] == c {
+            t.copy_from_slice(&[a, b, d, b, c, d]);
+        }
+    }
+    flipped
+}
+
 /// Loop's limit points in closed form from the level before (`Evaluator::ring_vertices`) give
 /// what the table's own rows give (`StencilTable::evaluate_with_normals`, the rows every point
 /// keeps for `stencils()` and the GPU), at levels 1 to 3 (4 on the closed meshes), with and without normals: on a
@@ -475,15 +489,7 @@ fn frame_equals_the_rows(
 /// (26 to 25) or the two tangent masks of a fan swapped (both checked).
 #[test]
 fn loops_closed_forms_equal_the_tables_rows() {
-    let mut flipped = torus_triangles(12, 10, 1.0, 0.35);
-    // Flip the diagonal of every third quad: valences 5 and 7 around them.
-    for quad in (0..flipped.indices.len() / 6).step_by(3) {
-        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
-        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
-        if t[3] == a && t[4] == c {
-            t.copy_from_slice(&[a, b, d, b, c, d]);
-        }
-    }
+    let flipped = flipped_torus(12, 10);
     let hole = subsurf::shapes::triangulate_quads(&grid_with_hole(6, 6, 2..4, 2..4));
     let meshes = [
         ("icosahedron", icosahedron(), true),
@@ -523,14 +529,7 @@ fn loops_closed_forms_equal_the_tables_rows() {
 /// then comes from the masks.
 #[test]
 fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
-    let mut flipped = torus_triangles(9, 8, 1.0, 0.35);
-    for quad in (0..flipped.indices.len() / 6).step_by(3) {
-        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
-        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
-        if t[3] == a && t[4] == c {
-            t.copy_from_slice(&[a, b, d, b, c, d]);
-        }
-    }
+    let flipped = flipped_torus(9, 8);
     let meshes = [
         ("icosahedron", icosahedron()),
         ("flipped torus", flipped),
@@ -567,14 +566,7 @@ fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
 /// (both checked).
 #[test]
 fn refined_frames_from_the_levels_equal_the_tables_rows() {
-    let mut flipped = torus_triangles(9, 8, 1.0, 0.35);
-    for quad in (0..flipped.indices.len() / 6).step_by(3) {
-        let t = &mut flipped.indices[6 * quad..6 * quad + 6];
-        let (a, b, c, d) = (t[0], t[1], t[2], t[5]);
-        if t[3] == a && t[4] == c {
-            t.copy_from_slice(&[a, b, d, b, c, d]);
-        }
-    }
+    let flipped = flipped_torus(9, 8);
     let cases = [
         (Scheme::CatmullClark, "icosahedron", icosahedron()),
         (Scheme::CatmullClark, "flipped torus", flipped.clone()),
