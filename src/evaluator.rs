@@ -11,9 +11,9 @@ use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
 use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
-use crate::scheme::{build_stencils, table_too_large, MadeElsewhere};
+use crate::scheme::{build_stencils, table_too_large, MadeElsewhere, StencilBuild};
 use crate::shared_weights::SharedWeights;
-use crate::smooth_levels::{catmull_clark_steps, SmoothLevels};
+use crate::smooth_levels::{catmull_clark_faces, catmull_clark_steps, SmoothLevels};
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
@@ -93,32 +93,8 @@ impl Evaluator {
                 return Ok(evaluator);
             }
         }
-        // Untagged Catmull-Clark at the limit only: tags can make any face irregular, and
-        // other schemes' regular pieces are not these patches. With normals, the patches' and
-        // the rows' tangents are both summed on differences (see `crate::patches`), so that
-        // they agree with the GPU evaluator's, which runs the rows. The patches' points get
-        // their rows from the patches too, not through the levels.
-        let patchable = options.limit
-            && tags.is_trivial()
-            && options.schemes.iter().all(|&s| s == Scheme::CatmullClark);
-        let levels = u32::try_from(options.levels()).unwrap_or(u32::MAX);
-        let (mut patches, mut owners) = (None, Vec::new());
-        let mut find_patches = |faces: &PolyMesh| {
-            let outputs = faces.positions.len() / 3;
-            patches = RegularPatches::new(base, faces, levels, outputs);
-            owners = patches.as_ref().map_or_else(Vec::new, |p| p.owners(outputs));
-            owners.iter().map(|&(p, _)| p != NO_PATCH).collect()
-        };
-        let made_elsewhere: Option<MadeElsewhere<'_>> = patchable.then_some(&mut find_patches);
-        let mut build = build_stencils(base, attributes, options, tags, made_elsewhere)?;
-        if let Some(patches) = &patches {
-            let tangents = build.table.tangent_weights().is_some();
-            let bytes = build.table.bytes() + patches.row_bytes(tangents);
-            if bytes > options.max_bytes {
-                return Err(Error::TooLarge(table_too_large(levels, bytes, options.max_bytes)));
-            }
-            build.table = patches.rows_into(build.table, &owners);
-        }
+        let (build, patches) = build_table(base, attributes, options, tags)?;
+        let patchable = patchable(options, tags);
         let rings = if patchable || !options.limit || !tags.is_trivial() {
             None
         } else {
@@ -200,31 +176,42 @@ impl Evaluator {
         let levels = options.levels();
         let all =
             |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
-        let (mut refined, mut rings, mut quads) = (None, None, None);
-        let faces = if !options.limit && !options.normals && all(Scheme::CatmullClark) {
-            SmoothLevels::catmull_clark(base, levels)
-                .map(|(form, faces)| (refined = Some(form), faces).1)
-        } else if !options.limit && !options.normals && all(Scheme::Loop) {
-            SmoothLevels::loop_(base, levels).map(|(form, faces)| (refined = Some(form), faces).1)
-        } else if options.limit && all(Scheme::Loop) {
-            closed_loop_rings(base, levels).map(|(form, faces)| (rings = Some(form), faces).1)
-        } else if all(Scheme::CatmullClark)
-            && (!options.limit || !crate::patches::any_regular(base))
-        {
-            // The limit (where no patch is), or refined points with the limit's normals.
-            catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
-                quads = Some(QuadRings::new(steps, &faces, options.limit)?);
-                Some(faces)
-            })
-        } else {
-            None
-        };
+        let (mut refined, mut rings, mut quads, mut patches) = (None, None, None, None);
+        let faces =
+            if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
+                // Every point on a patch (a closed all-quad cage of valence 4: a torus).
+                let levels_u32 = u32::try_from(levels).ok();
+                catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
+                    let made = RegularPatches::new(base, &faces, levels_u32?, outputs)?;
+                    patches = Some(made).filter(|p| p.rest().is_empty());
+                    patches.as_ref().map(|_| faces)
+                })
+            } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
+                SmoothLevels::catmull_clark(base, levels)
+                    .map(|(form, faces)| (refined = Some(form), faces).1)
+            } else if !options.limit && !options.normals && all(Scheme::Loop) {
+                SmoothLevels::loop_(base, levels)
+                    .map(|(form, faces)| (refined = Some(form), faces).1)
+            } else if options.limit && all(Scheme::Loop) {
+                closed_loop_rings(base, levels).map(|(form, faces)| (rings = Some(form), faces).1)
+            } else if all(Scheme::CatmullClark)
+                && (!options.limit || !crate::patches::any_regular(base))
+            {
+                // The limit (where no patch is), or refined points with the limit's normals.
+                catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
+                    quads = Some(QuadRings::new(steps, &faces, options.limit)?);
+                    Some(faces)
+                })
+            } else {
+                None
+            };
         let Some(faces) = faces else { return Ok(None) };
-        let (outputs, bytes) = match (&refined, &rings, &quads) {
+        let (outputs, bytes) = match (&refined, &rings, &quads, &patches) {
             (Some(levels), ..) => (levels.outputs(), levels.bytes()),
-            (None, Some(rings), _) => (rings.num_points(), rings.bytes()),
-            (None, None, Some(quads)) => (quads.num_points(), quads.bytes()),
-            (None, None, None) => return Ok(None),
+            (None, Some(rings), ..) => (rings.num_points(), rings.bytes()),
+            (None, None, Some(quads), _) => (quads.num_points(), quads.bytes()),
+            (None, None, None, Some(patches)) => (patches.num_points(), patches.bytes()),
+            (None, None, None, None) => return Ok(None),
         };
         if bytes > options.max_bytes {
             return Ok(None);
@@ -238,7 +225,7 @@ impl Evaluator {
             control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
-            patches: None,
+            patches,
             rings,
             quads,
             levels: refined,
@@ -258,7 +245,7 @@ impl Evaluator {
             return Ok(table);
         }
         let (base, options) = &**recipe;
-        let build = build_stencils(base, &[], options, &Tags::default(), None)?;
+        let (build, _) = build_table(base, &[], options, &Tags::default())?;
         Ok(made.get_or_init(|| build.table))
     }
 
@@ -355,7 +342,8 @@ impl Evaluator {
     /// none here.
     pub fn bytes(&self) -> u64 {
         let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
-        let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes);
+        let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes)
+            + self.patches.as_ref().map_or(0, RegularPatches::bytes);
         let table = match &self.table {
             Table::Built(table) => table.bytes(),
             Table::Later(..) => 0,
@@ -495,6 +483,45 @@ impl Evaluator {
         }
         self.table()?.evaluate(values, width, out)
     }
+}
+
+/// Untagged Catmull-Clark at the limit only: tags can make any face irregular, and other
+/// schemes' regular pieces are not these patches.
+fn patchable(options: &Options, tags: &Tags) -> bool {
+    options.limit && tags.is_trivial() && options.schemes.iter().all(|&s| s == Scheme::CatmullClark)
+}
+
+/// The stencil build of an evaluator, with its regular patches when `patchable` allows them.
+/// With normals, the patches' and the rows' tangents are both summed on differences (see
+/// `crate::patches`), so that they agree with the GPU evaluator's, which runs the rows. The
+/// patches' points get their rows from the patches too, not through the levels. An evaluator
+/// that leaves its table out makes it here on first use, so the two are the same.
+fn build_table(
+    base: &HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+) -> Result<(StencilBuild, Option<RegularPatches>)> {
+    let levels = u32::try_from(options.levels()).unwrap_or(u32::MAX);
+    let (mut patches, mut owners) = (None, Vec::new());
+    let mut find_patches = |faces: &PolyMesh| {
+        let outputs = faces.positions.len() / 3;
+        patches = RegularPatches::new(base, faces, levels, outputs);
+        owners = patches.as_ref().map_or_else(Vec::new, |p| p.owners(outputs));
+        owners.iter().map(|&(p, _)| p != NO_PATCH).collect()
+    };
+    let made_elsewhere: Option<MadeElsewhere<'_>> =
+        patchable(options, tags).then_some(&mut find_patches);
+    let mut build = build_stencils(base, attributes, options, tags, made_elsewhere)?;
+    if let Some(patches) = &patches {
+        let tangents = build.table.tangent_weights().is_some();
+        let bytes = build.table.bytes() + patches.row_bytes(tangents);
+        if bytes > options.max_bytes {
+            return Err(Error::TooLarge(table_too_large(levels, bytes, options.max_bytes)));
+        }
+        build.table = patches.rows_into(build.table, &owners);
+    }
+    Ok((build, patches))
 }
 
 /// The points an evaluator makes in closed form, if any (the patches are Catmull-Clark's, the

@@ -157,6 +157,17 @@ impl RegularPatches {
         self.points.len()
     }
 
+    /// Bytes a frame reads besides its input: the control indices, each point's output vertex
+    /// and sample, the rest's list.
+    pub(crate) fn bytes(&self) -> u64 {
+        let lists = std::mem::size_of_val(&self.controls[..])
+            + std::mem::size_of_val(&self.offsets[..])
+            + std::mem::size_of_val(&self.points[..])
+            + std::mem::size_of_val(&self.params[..])
+            + std::mem::size_of_val(&self.rest[..]);
+        lists as u64
+    }
+
     /// Per output vertex (of `outputs`), its patch and sample `(i, j)`; [`NO_PATCH`] for the
     /// vertices no patch gives. A stencil build leaves the rows of the others empty, and
     /// [`Self::rows_into`] writes them.
@@ -309,6 +320,14 @@ pub(crate) fn any_regular(base: &HalfEdgeMesh) -> bool {
     base.has_simple_edges()
         && !base.is_non_manifold()
         && (0..base.num_cells()).any(|c| regular_controls(base, c).is_some())
+}
+
+/// Whether every face of `base` is a regular patch: then every output vertex lies on one, and
+/// the mesh is closed (a regular face's corners are interior).
+pub(crate) fn all_regular(base: &HalfEdgeMesh) -> bool {
+    base.has_simple_edges()
+        && !base.is_non_manifold()
+        && (0..base.num_cells()).all(|c| regular_controls(base, c).is_some())
 }
 
 /// The uniform cubic B-spline basis and its derivative at `t` in `[0, 1]`.

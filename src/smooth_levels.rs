@@ -76,6 +76,22 @@ pub(crate) fn catmull_clark_steps(
     Some((steps, faces_of(crate::refine::pqq::child_face_indices(&last), 4)))
 }
 
+/// Catmull-Clark's output faces after `levels` levels of `base` and the number of output
+/// vertices, from the levels' topology alone.
+pub(crate) fn catmull_clark_faces(base: &HalfEdgeMesh, levels: usize) -> Option<(PolyMesh, usize)> {
+    let (_, last) = levels_of(
+        base,
+        levels,
+        |_| Some(()),
+        |mesh| {
+            let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
+            crate::refine::pqq::child_mesh(mesh, zeros)
+        },
+    )?;
+    let outputs = crate::refine::pqq::num_child_vertices(&last);
+    Some((faces_of(crate::refine::pqq::child_face_indices(&last), 4), outputs))
+}
+
 /// Faces of `n` corners each, without positions.
 pub(crate) fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
     let face_sizes = vec![n; indices.len() / n as usize];

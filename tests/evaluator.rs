@@ -616,8 +616,9 @@ fn refined_frames_from_the_levels_equal_the_tables_rows() {
     assert_eq!(evaluator.step_vertices(), 0, "a boundary keeps the rows");
 }
 
-/// An evaluator whose levels give every point (`Evaluator::step_vertices`; Catmull-Clark's limit
-/// on a triangle cage, Loop's on a closed cage) leaves its table out: no frame reads it. It is made on first use
+/// An evaluator whose closed forms give every point (`Evaluator::step_vertices`; Catmull-Clark's
+/// limit on a triangle cage or, from patches, on a torus; Loop's on a closed cage) leaves its
+/// table out: no frame reads it. It is made on first use
 /// and is the table an evaluator that builds it at once holds (one with a vertex-varying
 /// channel, whose frames read the rows), bit for bit; `bytes` counts the levels only until
 /// then. With `max_bytes` below the table's size (but above the levels' and the result's), the
@@ -664,4 +665,15 @@ fn a_table_left_out_is_made_on_first_use() {
         assert!(positions.iter().any(|&x| x != 0.0), "{what}");
     }
     assert_eq!(refused, 3);
+    // A closed all-quad cage of valence 4: the patches give every point.
+    let quads = torus(8, 6, 1.0, 0.3);
+    let base = HalfEdgeMesh::from_poly(&quads).unwrap();
+    let colour = Attribute::vertex("colour", 1, vec![0.5; 48]);
+    let options = options(Scheme::CatmullClark, 2, true, true);
+    let lazy = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+    let eager = Evaluator::new(&base, std::slice::from_ref(&colour), &options, &Tags::default());
+    let eager = eager.unwrap();
+    assert_eq!(lazy.patch_vertices(), lazy.num_vertices());
+    assert!(lazy.bytes() < eager.bytes(), "{} bytes", lazy.bytes());
+    assert_eq!(lazy.table().unwrap(), eager.table().unwrap(), "torus");
 }
