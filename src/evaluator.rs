@@ -77,6 +77,15 @@ enum Table {
     Later(Box<(HalfEdgeMesh, Options)>, OnceLock<StencilTable>),
 }
 
+/// A closed form that gives every point of an evaluator, which then leaves its table out (see
+/// `Evaluator::from_levels`).
+enum Whole {
+    Patches(RegularPatches),
+    Levels(SmoothLevels),
+    Rings(RegularRings),
+    Quads(QuadRings),
+}
+
 impl Evaluator {
     /// Refines `base` once as `options` and `tags` say, recording the stencils. `attributes`
     /// are the base mesh's channels: face-varying ones are refined now (their values are fixed
@@ -176,47 +185,42 @@ impl Evaluator {
         let levels = options.levels();
         let all =
             |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
-        let (mut refined, mut rings, mut quads, mut patches) = (None, None, None, None);
-        let faces =
+        let made =
             if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
                 // Every point on a patch (a closed all-quad cage of valence 4: a torus).
-                let levels_u32 = u32::try_from(levels).ok();
                 catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
-                    let made = RegularPatches::new(base, &faces, levels_u32?, outputs)?;
-                    patches = Some(made).filter(|p| p.rest().is_empty());
-                    patches.as_ref().map(|_| faces)
+                    let patches =
+                        RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
+                    patches.rest().is_empty().then_some((Whole::Patches(patches), faces))
                 })
             } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
                 SmoothLevels::catmull_clark(base, levels)
-                    .map(|(form, faces)| (refined = Some(form), faces).1)
+                    .map(|(form, faces)| (Whole::Levels(form), faces))
             } else if !options.limit && !options.normals && all(Scheme::Loop) {
-                SmoothLevels::loop_(base, levels)
-                    .map(|(form, faces)| (refined = Some(form), faces).1)
+                SmoothLevels::loop_(base, levels).map(|(form, faces)| (Whole::Levels(form), faces))
             } else if options.limit && all(Scheme::Loop) {
-                closed_loop_rings(base, levels).map(|(form, faces)| (rings = Some(form), faces).1)
+                closed_loop_rings(base, levels).map(|(form, faces)| (Whole::Rings(form), faces))
             } else if all(Scheme::CatmullClark)
                 && (!options.limit || !crate::patches::any_regular(base))
             {
                 // The limit (where no patch is), or refined points with the limit's normals.
                 catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
-                    quads = Some(QuadRings::new(steps, &faces, options.limit)?);
-                    Some(faces)
+                    Some((Whole::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
                 })
             } else {
                 None
             };
-        let Some(faces) = faces else { return Ok(None) };
-        let (outputs, bytes) = match (&refined, &rings, &quads, &patches) {
-            (Some(levels), ..) => (levels.outputs(), levels.bytes()),
-            (None, Some(rings), ..) => (rings.num_points(), rings.bytes()),
-            (None, None, Some(quads), _) => (quads.num_points(), quads.bytes()),
-            (None, None, None, Some(patches)) => (patches.num_points(), patches.bytes()),
-            (None, None, None, None) => return Ok(None),
+        let Some((whole, faces)) = made else { return Ok(None) };
+        let (outputs, bytes) = match &whole {
+            Whole::Patches(patches) => (patches.num_points(), patches.bytes()),
+            Whole::Levels(levels) => (levels.outputs(), levels.bytes()),
+            Whole::Rings(rings) => (rings.num_points(), rings.bytes()),
+            Whole::Quads(quads) => (quads.num_points(), quads.bytes()),
         };
         if bytes > options.max_bytes {
             return Ok(None);
         }
-        Ok(Some(Evaluator {
+        let mut evaluator = Evaluator {
             table: Table::Later(Box::new((base.clone(), options.clone())), OnceLock::new()),
             num_control: base.num_vertices(),
             outputs,
@@ -225,12 +229,19 @@ impl Evaluator {
             control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
-            patches,
-            rings,
-            quads,
-            levels: refined,
+            patches: None,
+            rings: None,
+            quads: None,
+            levels: None,
             shared: None,
-        }))
+        };
+        match whole {
+            Whole::Patches(patches) => evaluator.patches = Some(patches),
+            Whole::Levels(levels) => evaluator.levels = Some(levels),
+            Whole::Rings(rings) => evaluator.rings = Some(rings),
+            Whole::Quads(quads) => evaluator.quads = Some(quads),
+        }
+        Ok(Some(evaluator))
     }
 
     /// The stencil table (positions, and the tangents' weights when normals come from it),
