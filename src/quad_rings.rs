@@ -16,7 +16,8 @@
 //! OpenSubdiv's `tan1` and `tan2` there; at other valences the masks' weights are tabled per
 //! valence. Why: a limit row of the horse at level 2 reads some 20 control points with three
 //! weights each; a step reads about 5 points per point it makes, and a mask 9 at valence 4.
-//! The table's rows stay whole, for `stencils()` and the GPU.
+//! The table's rows stay whole, for `stencils()` and the GPU; as no frame reads them, the
+//! evaluator makes the table only when asked for it (see `Evaluator::table`).
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::regular_rings::{Rings, MAX_VALENCE};

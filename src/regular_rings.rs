@@ -31,7 +31,8 @@
 //! level before and take about 45. Level `L - 1`'s points are made each frame: at level 1
 //! they are the control points; on a closed cage, by Loop's smooth rules level by level
 //! ([`Step`]); otherwise by a refined table of their own. The table's rows stay whole, for
-//! `stencils()` and the GPU; the points these give are left out of the rows' frame.
+//! `stencils()` and the GPU; the points these give are left out of the rows' frame, and where
+//! they give every point (a closed cage) the evaluator makes the table only when asked for it.
 
 use crate::mesh::HalfEdgeMesh;
 use crate::stencil::{ClosedForms, Lanes, Normals, PointSink, StencilTable};

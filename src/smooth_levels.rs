@@ -5,9 +5,10 @@
 //!
 //! Why: a refined row of the horse at Catmull-Clark level 2 holds some 11 control points (8
 //! bytes each) and gathers them from anywhere in the cage; a step reads about 5 points of the
-//! level before, mostly near each other, and a face point 4. The last level is a quarter of the
-//! frame's points at most (the levels before are a quarter of it and less), so the frame costs
-//! little more than one level. The table's rows stay whole, for `stencils()` and the GPU.
+//! level before, mostly near each other, and a face point 4. The levels before the last are a
+//! quarter of the frame's points and less, so a frame costs little more than its last level.
+//! No frame reads the table: the evaluator makes it only when asked for it (`stencils()`, the
+//! GPU; see `Evaluator::table`).
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::quad_rings::QuadStep;
