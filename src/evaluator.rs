@@ -13,7 +13,10 @@ use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere, StencilBuild};
 use crate::shared_weights::SharedWeights;
-use crate::smooth_levels::{catmull_clark_faces, catmull_clark_steps, SmoothLevels};
+use crate::smooth_levels::{
+    catmull_clark_faces, catmull_clark_steps, quad_faces, triangle_child, triangle_faces,
+    SmoothLevels,
+};
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
 use std::sync::OnceLock;
@@ -49,19 +52,9 @@ pub struct Evaluator {
     /// The output positions and normals of `control`, on first use.
     at_build: OnceLock<(Vec<f32>, Option<Vec<f32>>)>,
     source: NormalSource,
-    /// Catmull-Clark limit points on regular faces, evaluated as bicubic patches rather than
-    /// from their (much larger) stencil rows, with their normals; the table's rows give the
-    /// others (see `Evaluator::new`).
-    patches: Option<RegularPatches>,
-    /// Loop limit points whose level before is regular, in closed form from that level's
-    /// points (see `crate::regular_rings`); the table's rows give the others.
-    rings: Option<RegularRings>,
-    /// Catmull-Clark limit points on a closed cage that no patch covers, from the last level's
-    /// points by the masks (see `crate::quad_rings`); then they give every point.
-    quads: Option<QuadRings>,
-    /// Refined points (no limit) of a closed cage untagged, every level by the smooth rules
-    /// each frame (see `crate::smooth_levels`); then they give every point.
-    levels: Option<SmoothLevels>,
+    /// The points made in closed form rather than from their stencil rows, if any; the
+    /// table's rows give the others (see [`Closed`]).
+    closed: Option<Closed>,
     /// The weights of the rows a frame reads, each distinct list once, when the table has
     /// tangents (see `crate::shared_weights`).
     shared: Option<SharedWeights>,
@@ -77,13 +70,54 @@ enum Table {
     Later(Box<(HalfEdgeMesh, Options)>, OnceLock<StencilTable>),
 }
 
-/// A closed form that gives every point of an evaluator, which then leaves its table out (see
-/// `Evaluator::from_levels`).
-enum Whole {
+/// The closed form an evaluator runs for the points it gives, the table's rows giving the
+/// others (`ClosedForms::rest`); when it gives every point, the evaluator may leave its table
+/// out (see `Evaluator::from_levels`).
+#[derive(Clone, Debug)]
+enum Closed {
+    /// Catmull-Clark limit points on regular faces, evaluated as bicubic patches rather than
+    /// from their (much larger) stencil rows, with their normals (see `crate::patches`).
     Patches(RegularPatches),
-    Levels(SmoothLevels),
+    /// Loop limit points whose level before is regular, in closed form from that level's
+    /// points (see `crate::regular_rings`).
     Rings(RegularRings),
+    /// Catmull-Clark limit points (or refined points with limit normals) on a closed cage,
+    /// from the last level's points by the masks (see `crate::quad_rings`): every point.
     Quads(QuadRings),
+    /// Refined points (no limit, no normals) of a closed cage untagged, every level by the
+    /// smooth rules each frame (see `crate::smooth_levels`): every point.
+    Levels(SmoothLevels),
+}
+
+impl Closed {
+    fn form(&self) -> &dyn ClosedForms {
+        match self {
+            Closed::Patches(patches) => patches,
+            Closed::Rings(rings) => rings,
+            Closed::Quads(quads) => quads,
+            Closed::Levels(levels) => levels,
+        }
+    }
+
+    /// Number of output vertices it gives.
+    fn num_points(&self) -> usize {
+        match self {
+            Closed::Patches(patches) => patches.num_points(),
+            Closed::Rings(rings) => rings.num_points(),
+            Closed::Quads(quads) => quads.num_points(),
+            Closed::Levels(levels) => levels.outputs(),
+        }
+    }
+
+    /// What a frame reads for it besides its input.
+    fn bytes(&self) -> u64 {
+        match self {
+            Closed::Patches(patches) => patches.bytes(),
+            Closed::Rings(rings) => rings.bytes(),
+            Closed::Quads(quads) => quads.bytes(),
+            Closed::Levels(levels) => levels.bytes(),
+        }
+    }
 }
 
 impl Evaluator {
@@ -129,6 +163,9 @@ impl Evaluator {
             }
             _ => None,
         };
+        let closed = (patches.map(Closed::Patches))
+            .or(rings.map(Closed::Rings))
+            .or(quads.map(Closed::Quads));
         let source = match (options.normals, build.table.tangent_weights().is_some()) {
             (false, _) => NormalSource::None,
             (true, true) => NormalSource::Tangents,
@@ -147,8 +184,7 @@ impl Evaluator {
         }
         let shared = match (source, build.table.tangent_weights()) {
             (NormalSource::Tangents, Some([first, second])) => {
-                let closed = closed_forms(&patches, &rings, &quads, &None);
-                let rows: Vec<usize> = match closed.map(|c| c.rest()) {
+                let rows: Vec<usize> = match closed.as_ref().map(|c| c.form().rest()) {
                     Some(rest) => rest.iter().map(|&r| r as usize).collect(),
                     None => (0..build.table.num_stencils()).collect(),
                 };
@@ -166,10 +202,7 @@ impl Evaluator {
             control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source,
-            patches,
-            rings,
-            quads,
-            levels: None,
+            closed,
             shared,
         })
     }
@@ -191,57 +224,42 @@ impl Evaluator {
                 catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
                     let patches =
                         RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
-                    patches.rest().is_empty().then_some((Whole::Patches(patches), faces))
+                    patches.rest().is_empty().then_some((Closed::Patches(patches), faces))
                 })
             } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
                 SmoothLevels::catmull_clark(base, levels)
-                    .map(|(form, faces)| (Whole::Levels(form), faces))
+                    .map(|(form, faces)| (Closed::Levels(form), faces))
             } else if !options.limit && !options.normals && all(Scheme::Loop) {
-                SmoothLevels::loop_(base, levels).map(|(form, faces)| (Whole::Levels(form), faces))
+                SmoothLevels::loop_(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
             } else if options.limit && all(Scheme::Loop) {
-                closed_loop_rings(base, levels).map(|(form, faces)| (Whole::Rings(form), faces))
+                closed_loop_rings(base, levels).map(|(form, faces)| (Closed::Rings(form), faces))
             } else if all(Scheme::CatmullClark)
                 && (!options.limit || !crate::patches::any_regular(base))
             {
                 // The limit (where no patch is), or refined points with the limit's normals.
-                catmull_clark_steps(base, levels).and_then(|(steps, faces)| {
-                    Some((Whole::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
+                catmull_clark_steps(base, levels).and_then(|(steps, last)| {
+                    let faces = quad_faces(&last);
+                    Some((Closed::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
                 })
             } else {
                 None
             };
-        let Some((whole, faces)) = made else { return Ok(None) };
-        let (outputs, bytes) = match &whole {
-            Whole::Patches(patches) => (patches.num_points(), patches.bytes()),
-            Whole::Levels(levels) => (levels.outputs(), levels.bytes()),
-            Whole::Rings(rings) => (rings.num_points(), rings.bytes()),
-            Whole::Quads(quads) => (quads.num_points(), quads.bytes()),
-        };
-        if bytes > options.max_bytes {
+        let Some((closed, faces)) = made else { return Ok(None) };
+        if closed.bytes() > options.max_bytes {
             return Ok(None);
         }
-        let mut evaluator = Evaluator {
+        Ok(Some(Evaluator {
             table: Table::Later(Box::new((base.clone(), options.clone())), OnceLock::new()),
             num_control: base.num_vertices(),
-            outputs,
+            outputs: closed.num_points(),
             faces,
             attributes: Vec::new(),
             control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
-            patches: None,
-            rings: None,
-            quads: None,
-            levels: None,
+            closed: Some(closed),
             shared: None,
-        };
-        match whole {
-            Whole::Patches(patches) => evaluator.patches = Some(patches),
-            Whole::Levels(levels) => evaluator.levels = Some(levels),
-            Whole::Rings(rings) => evaluator.rings = Some(rings),
-            Whole::Quads(quads) => evaluator.quads = Some(quads),
-        }
-        Ok(Some(evaluator))
+        }))
     }
 
     /// The stencil table (positions, and the tangents' weights when normals come from it),
@@ -322,7 +340,10 @@ impl Evaluator {
     /// there is a uniform bicubic B-spline patch). Same positions and normals to f32 rounding,
     /// about 2.7 times faster per point without normals and 1.8 with them (torus, wasm).
     pub fn patch_vertices(&self) -> usize {
-        self.patches.as_ref().map_or(0, RegularPatches::num_points)
+        match &self.closed {
+            Some(Closed::Patches(patches)) => patches.num_points(),
+            _ => 0,
+        }
     }
 
     /// How many output vertices [`Evaluator::evaluate`] computes in closed form rather than
@@ -332,8 +353,11 @@ impl Evaluator {
     /// no patch covers (a triangle cage), every vertex, from the last level made by the rules
     /// (see `crate::quad_rings`). Same positions and normals to f32 rounding.
     pub fn ring_vertices(&self) -> usize {
-        let quads = self.quads.as_ref().map_or(0, QuadRings::num_points);
-        self.rings.as_ref().map_or(quads, RegularRings::num_points)
+        match &self.closed {
+            Some(Closed::Rings(rings)) => rings.num_points(),
+            Some(Closed::Quads(quads)) => quads.num_points(),
+            _ => 0,
+        }
     }
 
     /// How many output vertices [`Evaluator::evaluate`] makes by the levels' smooth rules
@@ -342,7 +366,10 @@ impl Evaluator {
     /// closed fan of 3 to 64 faces): then every vertex, each frame making each level from the
     /// one before (see `crate::smooth_levels`). Same positions to f32 rounding.
     pub fn step_vertices(&self) -> usize {
-        self.levels.as_ref().map_or(0, |_| self.num_vertices())
+        match &self.closed {
+            Some(Closed::Levels(levels)) => levels.outputs(),
+            _ => 0,
+        }
     }
 
     /// Bytes of what a frame reads besides its input: the table when frames read it, and for
@@ -352,14 +379,11 @@ impl Evaluator {
     /// forms give every point makes its table on first use ([`Evaluator::table`]) and counts
     /// none here.
     pub fn bytes(&self) -> u64 {
-        let quads = self.quads.as_ref().map_or(0, QuadRings::bytes);
-        let levels = self.levels.as_ref().map_or(0, SmoothLevels::bytes)
-            + self.patches.as_ref().map_or(0, RegularPatches::bytes);
         let table = match &self.table {
             Table::Built(table) => table.bytes(),
             Table::Later(..) => 0,
         };
-        table + self.rings.as_ref().map_or(quads, RegularRings::bytes) + levels
+        table + self.closed.as_ref().map_or(0, Closed::bytes)
     }
 
     /// Number of output vertices.
@@ -415,7 +439,7 @@ impl Evaluator {
             }
             (_, Some(normals)) => Some(normals),
         };
-        if let Some(closed) = closed_forms(&self.patches, &self.rings, &self.quads, &self.levels) {
+        if let Some(closed) = self.closed.as_ref().map(Closed::form) {
             // The rows of the points no closed form gives, then the closed forms.
             let control = pad(control);
             let (positions, _) = positions.as_chunks_mut::<3>();
@@ -535,23 +559,6 @@ fn build_table(
     Ok((build, patches))
 }
 
-/// The points an evaluator makes in closed form, if any (the patches are Catmull-Clark's, the
-/// rings Loop's: at most one of the two is there).
-fn closed_forms<'a>(
-    patches: &'a Option<RegularPatches>,
-    rings: &'a Option<RegularRings>,
-    quads: &'a Option<QuadRings>,
-    levels: &'a Option<SmoothLevels>,
-) -> Option<&'a dyn ClosedForms> {
-    match (patches, rings, quads, levels) {
-        (Some(patches), ..) => Some(patches),
-        (None, Some(rings), ..) => Some(rings),
-        (None, None, Some(quads), _) => Some(quads),
-        (None, None, None, Some(levels)) => Some(levels),
-        (None, None, None, None) => None,
-    }
-}
-
 /// Loop's closed forms for the last level (`crate::regular_rings`), when every level is Loop's
 /// and the table, with them, stays within `options.max_bytes`: they are an evaluation path,
 /// never a reason to refuse a build. The level before is the control mesh at level 1, else a
@@ -636,7 +643,7 @@ fn closed_loop_rings(base: &HalfEdgeMesh, levels: usize) -> Option<(RegularRings
         1 => (Previous::Control, std::borrow::Cow::Borrowed(base)),
         _ => closed_previous(base, levels)?,
     };
-    let faces = crate::smooth_levels::faces_of(crate::refine::ptq::child_face_indices(&last), 3);
+    let faces = triangle_faces(&last);
     let outputs = crate::refine::ptq::num_child_vertices(&last);
     let (parents, vertices) = (&last.he_from, last.num_vertices());
     let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous)?;
@@ -655,8 +662,7 @@ fn smooth_steps(
     for _ in 0..levels {
         let mesh = &meshes[1];
         steps.push(Step::new(mesh)?);
-        let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
-        let child = crate::refine::ptq::child_mesh(mesh, zeros);
+        let child = triangle_child(mesh);
         meshes.swap(0, 1);
         meshes[1] = std::borrow::Cow::Owned(child);
     }
@@ -681,7 +687,7 @@ mod tests {
             crate::tags::Crease { vertices: [mesh.indices[0], mesh.indices[1]], sharpness: 2.0 };
         let tags = Tags { creases: vec![crease], ..Tags::default() };
         let evaluator = Evaluator::new(&base, &[], &options, &tags).unwrap();
-        assert!(evaluator.shared.is_some() && evaluator.rings.is_none());
+        assert!(evaluator.shared.is_some() && !matches!(evaluator.closed, Some(Closed::Rings(_))));
         let control: Vec<f32> =
             mesh.positions.iter().enumerate().map(|(i, x)| x * (1.0 + i as f32 / 100.0)).collect();
         let n = 3 * evaluator.num_vertices();

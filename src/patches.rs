@@ -317,17 +317,20 @@ impl ClosedForms for RegularPatches {
 
 /// Whether any face of `base` is a regular patch (see [`RegularPatches::new`]).
 pub(crate) fn any_regular(base: &HalfEdgeMesh) -> bool {
-    base.has_simple_edges()
-        && !base.is_non_manifold()
-        && (0..base.num_cells()).any(|c| regular_controls(base, c).is_some())
+    regular_faces(base).is_some_and(|mut faces| faces.any(|regular| regular))
 }
 
 /// Whether every face of `base` is a regular patch: then every output vertex lies on one, and
 /// the mesh is closed (a regular face's corners are interior).
 pub(crate) fn all_regular(base: &HalfEdgeMesh) -> bool {
-    base.has_simple_edges()
-        && !base.is_non_manifold()
-        && (0..base.num_cells()).all(|c| regular_controls(base, c).is_some())
+    regular_faces(base).is_some_and(|mut faces| faces.all(|regular| regular))
+}
+
+/// Per face of `base`, whether it is a regular patch; `None` for a mesh that has none (not a
+/// simple 2-manifold, as [`RegularPatches::new`] requires).
+fn regular_faces(base: &HalfEdgeMesh) -> Option<impl Iterator<Item = bool> + '_> {
+    let manifold = base.has_simple_edges() && !base.is_non_manifold();
+    manifold.then(|| (0..base.num_cells()).map(|c| regular_controls(base, c).is_some()))
 }
 
 /// The uniform cubic B-spline basis and its derivative at `t` in `[0, 1]`.

@@ -31,20 +31,16 @@ impl SmoothLevels {
     /// `refine::pqq` lists them; no positions); `None` unless every level before the last is a
     /// closed cage whose every vertex has a closed fan of 3 to `MAX_VALENCE` faces.
     pub(crate) fn catmull_clark(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
-        let (steps, faces) = catmull_clark_steps(base, levels)?;
-        Some((SmoothLevels::Quads(steps), faces))
+        let (steps, last) = catmull_clark_steps(base, levels)?;
+        Some((SmoothLevels::Quads(steps), quad_faces(&last)))
     }
 
     /// Loop's `levels` levels of `base`, with the output faces (triangles, as `refine::ptq`
     /// lists them); `None` unless every level before the last is a closed triangle mesh with a
     /// closed fan at every vertex.
     pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
-        let (steps, last) = levels_of(base, levels, Step::new, |mesh| {
-            let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
-            crate::refine::ptq::child_mesh(mesh, zeros)
-        })?;
-        let faces = faces_of(crate::refine::ptq::child_face_indices(&last), 3);
-        Some((SmoothLevels::Triangles(steps, fan_masks()), faces))
+        let (steps, last) = levels_of(base, levels, Step::new, triangle_child)?;
+        Some((SmoothLevels::Triangles(steps, fan_masks()), triangle_faces(&last)))
     }
 
     /// Number of output points.
@@ -64,37 +60,46 @@ impl SmoothLevels {
     }
 }
 
-/// Catmull-Clark's steps of `levels` levels from `base`, with the output faces (see
-/// [`SmoothLevels::catmull_clark`]).
+/// Catmull-Clark's steps of `levels` levels from `base`, with the mesh of the level before the
+/// last (see [`SmoothLevels::catmull_clark`]; [`quad_faces`] of it are the output faces).
 pub(crate) fn catmull_clark_steps(
     base: &HalfEdgeMesh,
     levels: usize,
-) -> Option<(Vec<QuadStep>, PolyMesh)> {
-    let (steps, last) = levels_of(base, levels, QuadStep::new, |mesh| {
-        let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
-        crate::refine::pqq::child_mesh(mesh, zeros)
-    })?;
-    Some((steps, faces_of(crate::refine::pqq::child_face_indices(&last), 4)))
+) -> Option<(Vec<QuadStep>, Cow<'_, HalfEdgeMesh>)> {
+    levels_of(base, levels, QuadStep::new, quad_child)
 }
 
 /// Catmull-Clark's output faces after `levels` levels of `base` and the number of output
 /// vertices, from the levels' topology alone.
 pub(crate) fn catmull_clark_faces(base: &HalfEdgeMesh, levels: usize) -> Option<(PolyMesh, usize)> {
-    let (_, last) = levels_of(
-        base,
-        levels,
-        |_| Some(()),
-        |mesh| {
-            let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
-            crate::refine::pqq::child_mesh(mesh, zeros)
-        },
-    )?;
-    let outputs = crate::refine::pqq::num_child_vertices(&last);
-    Some((faces_of(crate::refine::pqq::child_face_indices(&last), 4), outputs))
+    let (_, last) = levels_of(base, levels, |_| Some(()), quad_child)?;
+    Some((quad_faces(&last), crate::refine::pqq::num_child_vertices(&last)))
+}
+
+/// The child mesh of `mesh` by the quad split, topology only (its positions left at zero).
+fn quad_child(mesh: &HalfEdgeMesh) -> HalfEdgeMesh {
+    let zeros = vec![[0.0; 3]; crate::refine::pqq::num_child_vertices(mesh)];
+    crate::refine::pqq::child_mesh(mesh, zeros)
+}
+
+/// The child mesh of `mesh` by the triangle split, topology only (its positions left at zero).
+pub(crate) fn triangle_child(mesh: &HalfEdgeMesh) -> HalfEdgeMesh {
+    let zeros = vec![[0.0; 3]; crate::refine::ptq::num_child_vertices(mesh)];
+    crate::refine::ptq::child_mesh(mesh, zeros)
+}
+
+/// The quads of `mesh`'s quad split, without positions.
+pub(crate) fn quad_faces(mesh: &HalfEdgeMesh) -> PolyMesh {
+    faces_of(crate::refine::pqq::child_face_indices(mesh), 4)
+}
+
+/// The triangles of `mesh`'s triangle split, without positions.
+pub(crate) fn triangle_faces(mesh: &HalfEdgeMesh) -> PolyMesh {
+    faces_of(crate::refine::ptq::child_face_indices(mesh), 3)
 }
 
 /// Faces of `n` corners each, without positions.
-pub(crate) fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
+fn faces_of(indices: Vec<u32>, n: u32) -> PolyMesh {
     let face_sizes = vec![n; indices.len() / n as usize];
     PolyMesh { positions: Vec::new(), indices, face_sizes }
 }
