@@ -210,7 +210,8 @@ impl Evaluator {
     /// An evaluator whose closed form gives every point from the levels' smooth rules, on a
     /// closed cage: refined points (`crate::smooth_levels`); Catmull-Clark's limit where no
     /// base face is a regular patch, or its refined points with the limit's normals
-    /// (`crate::quad_rings`); Loop's limit (`crate::regular_rings`). It holds the output faces and the
+    /// (`crate::quad_rings`); Loop's limit, or its refined points with the limit's normals
+    /// (`crate::regular_rings`). It holds the output faces and the
     /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
     /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
     fn from_levels(base: &HalfEdgeMesh, options: &Options) -> Result<Option<Self>> {
@@ -231,8 +232,10 @@ impl Evaluator {
                     .map(|(form, faces)| (Closed::Levels(form), faces))
             } else if !options.limit && !options.normals && all(Scheme::Loop) {
                 SmoothLevels::loop_(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
-            } else if options.limit && all(Scheme::Loop) {
-                closed_loop_rings(base, levels).map(|(form, faces)| (Closed::Rings(form), faces))
+            } else if all(Scheme::Loop) {
+                // The limit, or refined points with the limit's normals.
+                closed_loop_rings(base, levels, !options.limit)
+                    .map(|(form, faces)| (Closed::Rings(form), faces))
             } else if all(Scheme::CatmullClark)
                 && (!options.limit || !crate::patches::any_regular(base))
             {
@@ -351,7 +354,8 @@ impl Evaluator {
     /// the children of regular vertices (valence 6, interior) and of edges between two (see
     /// `crate::regular_rings`); Catmull-Clark at the limit without tags on a closed cage that
     /// no patch covers (a triangle cage), every vertex, from the last level made by the rules
-    /// (see `crate::quad_rings`). Same positions and normals to f32 rounding.
+    /// (see `crate::quad_rings`); refined points with the limit's normals on a closed cage, by
+    /// either scheme. Same positions and normals to f32 rounding.
     pub fn ring_vertices(&self) -> usize {
         match &self.closed {
             Some(Closed::Rings(rings)) => rings.num_points(),
@@ -586,9 +590,16 @@ fn regular_rings(
     let children = &faces.indices;
     // A mesh's cells are its half-edges in order, so their corners are `he_from`.
     let rings = if levels == 1 {
-        RegularRings::new(&base.he_from, base.num_vertices(), children, outputs, Previous::Control)?
+        RegularRings::new(
+            &base.he_from,
+            base.num_vertices(),
+            children,
+            outputs,
+            Previous::Control,
+            None,
+        )?
     } else if let Some((previous, last)) = closed_previous(base, levels) {
-        RegularRings::new(&last.he_from, last.num_vertices(), children, outputs, previous)?
+        RegularRings::new(&last.he_from, last.num_vertices(), children, outputs, previous, None)?
     } else {
         let previous = Options {
             schemes: options.schemes[..levels - 1].to_vec(),
@@ -600,7 +611,7 @@ fn regular_rings(
         let build = build_stencils(base, &[], &previous, tags, None).ok()?;
         let vertices = build.table.num_stencils();
         let previous = Previous::Table(build.table);
-        RegularRings::new(&build.mesh.indices, vertices, children, outputs, previous)?
+        RegularRings::new(&build.mesh.indices, vertices, children, outputs, previous, None)?
     };
     (rings.bytes() <= budget).then_some(rings)
 }
@@ -624,6 +635,7 @@ fn closed_previous(
             &last.he_from,
             last.num_vertices(),
             if steps.is_empty() { Previous::Control } else { Previous::Steps(steps) },
+            None,
         )?;
         Previous::Nested(Box::new(inner), step)
     } else {
@@ -633,8 +645,13 @@ fn closed_previous(
 }
 
 /// Loop's limit on a closed cage when its closed forms give every point, with the output
-/// faces (as `refine::ptq` lists them), for an evaluator that leaves its table out.
-fn closed_loop_rings(base: &HalfEdgeMesh, levels: usize) -> Option<(RegularRings, PolyMesh)> {
+/// faces (as `refine::ptq` lists them), for an evaluator that leaves its table out. With
+/// `refined`, the last level's own points with the limit's normals.
+fn closed_loop_rings(
+    base: &HalfEdgeMesh,
+    levels: usize,
+    refined: bool,
+) -> Option<(RegularRings, PolyMesh)> {
     if !base.has_simple_edges() || base.is_non_manifold() {
         return None;
     }
@@ -646,7 +663,11 @@ fn closed_loop_rings(base: &HalfEdgeMesh, levels: usize) -> Option<(RegularRings
     let faces = triangle_faces(&last);
     let outputs = crate::refine::ptq::num_child_vertices(&last);
     let (parents, vertices) = (&last.he_from, last.num_vertices());
-    let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous)?;
+    let refined = match refined {
+        true => Some(Box::new(Step::new(&last)?)),
+        false => None,
+    };
+    let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous, refined)?;
     (rings.num_points() == outputs && rings.rest().is_empty()).then_some((rings, faces))
 }
 

@@ -160,8 +160,9 @@ impl ClosedForms for SmoothLevels {
         }
     }
 
-    /// The points only: the levels serve evaluators without normals (Catmull-Clark's and
-    /// Loop's normals are the limit's, from the table's tangent rows).
+    /// The points only: the levels serve evaluators without normals (with them, the last
+    /// level's points come with the limit's normals from `crate::quad_rings` and
+    /// `crate::regular_rings`).
     fn points_and_normals(
         &self,
         control: &[[f32; 4]],

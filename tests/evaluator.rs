@@ -592,8 +592,9 @@ fn refined_frames_from_the_levels_equal_the_tables_rows() {
             assert_eq!(evaluator.step_vertices(), evaluator.num_vertices(), "{what}");
             compared += frame_equals_the_rows(&evaluator, &control, false, &what);
             check(&mesh, &[], &options(scheme, levels, false, false), &Tags::default(), &what);
-            if scheme == Scheme::CatmullClark {
-                // With normals: the last level's points, the limit's normals on its rings.
+            {
+                // With normals: the last level's points, the limit's normals on its rings
+                // (Catmull-Clark's) or from the level before's closed forms (Loop's).
                 let options = options(scheme, levels, false, true);
                 let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
                 let what = format!("{what}, normals");
