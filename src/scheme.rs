@@ -420,9 +420,14 @@ fn build_stencils_in(
             // Refined points with limit normals: the entries of the limit positions' rows.
             (Ok(a), Ok(b), Some(limit)) => {
                 let limit = limit.into_table(what)?;
-                let first = limit.with_weights(a).ok_or_else(mismatch)?;
-                let second = limit.with_weights(b).ok_or_else(mismatch)?;
-                table.with_tangents(first, second)
+                match limit.with_positions_of(&table) {
+                    Ok(shared) => shared.with_tangent_weights(a, b).ok_or_else(mismatch)?,
+                    Err(limit) => {
+                        let first = limit.with_weights(a).ok_or_else(mismatch)?;
+                        let second = limit.with_weights(b).ok_or_else(mismatch)?;
+                        table.with_tangents(first, second)
+                    }
+                }
             }
             (Err(a), Err(b), _) => table.with_tangents(a.into_table(what)?, b.into_table(what)?),
             _ => return Err(mismatch()),

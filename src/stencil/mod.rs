@@ -193,6 +193,50 @@ impl StencilTable {
         })
     }
 
+    /// The rows of `positions` (the same outputs and control vertices) on this table's entries,
+    /// which must hold each of their control vertices: a refined table on the entries of the
+    /// limit's (the refined point with the limit's normals), whose tangents' weights then share
+    /// them. Itself back when some row of `positions` names a control vertex its row here does
+    /// not.
+    /// Why: merging the refined rows with the limit's sorted all three tables' rows and took a
+    /// fifth of such a build; a limit row holds its vertex's refined row, as every limit mask
+    /// weights the vertex itself.
+    pub(crate) fn with_positions_of(
+        self,
+        positions: &StencilTable,
+    ) -> std::result::Result<Self, Self> {
+        match self.positions_on_entries(positions) {
+            Some(weights) => Ok(StencilTable { weights, tangent_weights: None, ..self }),
+            None => Err(self),
+        }
+    }
+
+    /// The weights of `positions`' rows on this table's entries (see `with_positions_of`).
+    fn positions_on_entries(&self, positions: &StencilTable) -> Option<Vec<f32>> {
+        let rows = self.num_stencils();
+        if positions.num_stencils() != rows || positions.num_control != self.num_control {
+            return None;
+        }
+        let mut weights = vec![0.0; self.indices.len()];
+        // Per control vertex, its entry in the current row (`u32::MAX` outside it).
+        let mut entry = vec![u32::MAX; self.num_control as usize];
+        for i in 0..rows {
+            let (start, end) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            for (k, &c) in self.indices[start..end].iter().enumerate() {
+                *entry.get_mut(c as usize)? = (start + k) as u32;
+            }
+            let (controls, row) = positions.stencil(i)?;
+            for (&c, &w) in controls.iter().zip(row) {
+                let at = *entry.get(c as usize)?;
+                *weights.get_mut(at as usize)? = w;
+            }
+            for &c in &self.indices[start..end] {
+                entry[c as usize] = u32::MAX;
+            }
+        }
+        Some(weights)
+    }
+
     /// This table of positions with the tables of the two tangents (same rows, same control
     /// vertices) merged into it: each row's entries become the union of the three rows'.
     pub(crate) fn with_tangents(self, first: StencilTable, second: StencilTable) -> StencilTable {
@@ -623,5 +667,31 @@ impl RowIds for &[u32] {
     #[inline(always)]
     fn row(self, k: usize) -> usize {
         self[k] as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(offsets: Vec<u32>, indices: Vec<u32>, weights: Vec<f32>) -> StencilTable {
+        StencilTable { num_control: 5, offsets, indices, weights, tangent_weights: None }
+    }
+
+    /// Refined rows moved onto the entries of limit rows that hold them keep every weight at
+    /// its control vertex and put 0 on the others; a refined row with a control vertex its
+    /// limit row lacks gives the limit table back, unchanged.
+    #[test]
+    fn positions_go_onto_entries_that_hold_them() {
+        let limit = table(vec![0, 3, 5], vec![4, 0, 2, 1, 3], vec![0.5, 0.25, 0.25, 0.6, 0.4]);
+        let refined = table(vec![0, 2, 3], vec![0, 4], vec![0.75, 0.25, 1.0]);
+        let refined = StencilTable { indices: vec![0, 4, 3], ..refined };
+        let shared = limit.clone().with_positions_of(&refined).ok().unwrap();
+        assert_eq!(shared.indices, limit.indices);
+        assert_eq!(shared.offsets, limit.offsets);
+        assert_eq!(shared.weights, [0.25, 0.75, 0.0, 0.0, 1.0]);
+        let outside = StencilTable { indices: vec![0, 4, 2], ..refined };
+        let back = limit.clone().with_positions_of(&outside).err().unwrap();
+        assert_eq!(back, limit);
     }
 }
