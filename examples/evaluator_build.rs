@@ -2,9 +2,12 @@
 //! options before each, and prints both times: a profiler's view of the build that the
 //! limit-surface issue holds to 3× a `subdivide`. By default the 100k-quad torus at
 //! Catmull-Clark level 2 (its faces are all regular patches); or an OBJ file, scheme and level,
-//! and `refined` for the refined table instead of the limit's.
+//! then any of `refined` (the refined table instead of the limit's), `normals` (with `refined`:
+//! the limit's normals too) and `table` (also time the stencil table's first use, which
+//! `stencils()` and the GPU make: an evaluator whose closed forms give every point leaves it
+//! out until then).
 //!
-//!     cargo run --release --example evaluator_build -- [CALLS] [FILE.obj SCHEME LEVELS [refined]]
+//!     cargo run --release --example evaluator_build -- [CALLS] [FILE.obj SCHEME LEVELS [refined] [normals] [table]]
 use std::time::Instant;
 use subsurf::io::obj::read_obj;
 use subsurf::shapes::torus;
@@ -14,7 +17,8 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let calls: usize = args.first().and_then(|n| n.parse().ok()).unwrap_or(3);
     let rest = &args[1.min(args.len())..];
-    let refined = rest.len() == 4 && rest[3] == "refined";
+    let flag = |name: &str| rest.iter().skip(3).any(|f| f == name);
+    let (refined, table) = (flag("refined"), flag("table"));
     let (mesh, options) = match &rest[..rest.len().min(3)] {
         [path, scheme, levels] => {
             let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
@@ -24,7 +28,7 @@ fn main() {
         }
         _ => (torus(400, 250, 1.0, 0.25), Options::new(Scheme::CatmullClark, 2)),
     };
-    let options = Options { limit: !refined, normals: !refined, ..options };
+    let options = Options { limit: !refined, normals: !refined || flag("normals"), ..options };
     for _ in 0..calls {
         let start = Instant::now();
         let out = if refined {
@@ -44,5 +48,11 @@ fn main() {
             build / subdivide,
             evaluator.num_vertices()
         );
+        if table {
+            let start = Instant::now();
+            let bytes = evaluator.table().map(|t| t.bytes()).unwrap_or_else(|e| panic!("{e}"));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            println!("  table {ms:.1} ms ({:.2}x), {bytes} bytes", ms / subdivide);
+        }
     }
 }
