@@ -504,8 +504,8 @@ impl RegularRings {
     }
 
     /// Each case's output vertex, limit point and tangents, from the padded control points:
-    /// the nested closed forms' first, if any (see [`Previous::Nested`]).
-    /// Gives back the parents' points.
+    /// the nested closed forms' first, if any (see [`Previous::Nested`]); then the parents'
+    /// points, which a refined evaluator's last step reads (`refined`).
     #[inline(always)]
     fn run<'c>(
         &self,
