@@ -664,7 +664,7 @@ fn closed_loop_rings(
     let outputs = crate::refine::ptq::num_child_vertices(&last);
     let (parents, vertices) = (&last.he_from, last.num_vertices());
     let refined = match refined {
-        true => Some(Box::new(Step::new(&last)?)),
+        true => Some(Step::new(&last)?),
         false => None,
     };
     let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous, refined)?;

@@ -82,9 +82,9 @@ pub(crate) struct RegularRings {
     parent_vertices: usize,
     outputs: usize,
     /// For refined points with the limit's normals (`normals` without `limit`): the step that
-    /// makes the last level's own points from the level before, which the closed forms then
-    /// give the normals of. `None` for the limit.
-    refined: Option<Box<Step>>,
+    /// makes the last level's own points from the level before (on `rings`), which the closed
+    /// forms then give the normals of. `None` for the limit.
+    refined: Option<Box<Children>>,
 }
 
 /// Where the points of the level before the last come from.
@@ -125,6 +125,13 @@ impl Previous {
 pub(crate) struct Step {
     /// Every vertex's ring.
     rings: Rings,
+    children: Children,
+}
+
+/// What a [`Step`] makes, apart from the rings its vertex children read: the closed forms of a
+/// refined evaluator keep it on their own rings of the same level (`RegularRings::refined`).
+#[derive(Clone, Debug)]
+struct Children {
     /// The vertex whose child each of the first outputs is: every vertex once, in order,
     /// unless [`RegularRings`] reordered the last step's output.
     centres: Vec<u32>,
@@ -156,13 +163,34 @@ impl Step {
             })
             .collect::<Option<Vec<_>>>()?;
         let centres = (0..mesh.num_vertices() as u32).collect();
-        Some(Step { rings, centres, edges })
+        Some(Step { rings, children: Children { centres, edges } })
     }
 
     pub(crate) fn bytes(&self) -> u64 {
-        let lists =
-            std::mem::size_of_val(&self.centres[..]) + std::mem::size_of_val(&self.edges[..]);
-        self.rings.bytes() + lists as u64
+        self.rings.bytes() + self.children.bytes()
+    }
+
+    /// The child level's points from `points` (this level's, padded), to `out` in order.
+    pub(crate) fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks], out: &mut impl PointSink) {
+        self.children.apply(&self.rings, points, masks, out);
+    }
+
+    /// Number of points of the child level.
+    pub(crate) fn outputs(&self) -> usize {
+        self.children.outputs()
+    }
+
+    /// The child level's points, padded.
+    pub(crate) fn padded(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
+        let mut out = Vec::with_capacity(self.outputs());
+        self.apply(points, masks, &mut out);
+        out
+    }
+}
+
+impl Children {
+    fn bytes(&self) -> u64 {
+        (std::mem::size_of_val(&self.centres[..]) + std::mem::size_of_val(&self.edges[..])) as u64
     }
 
     /// Makes output `k` what output `old[k]` was (`old` a permutation that keeps the vertex
@@ -174,18 +202,24 @@ impl Step {
         self.edges = edge_children.iter().map(|&o| self.edges[o as usize - first_edge]).collect();
     }
 
-    /// Reads input `new[v]` where it read input `v` (`old` the inverse of `new`), the outputs
-    /// unchanged: the step from a level its closed forms renumbered (`number_parents_as_read`).
-    fn renumber_inputs(&mut self, old: &[u32], new: &[u32]) {
+    /// Reads input `new[v]` where it read input `v`, the outputs unchanged: the step from a
+    /// level its closed forms renumbered (`number_parents_as_read`, which renumbers the rings).
+    fn renumber_inputs(&mut self, new: &[u32]) {
         let renumber = |v: &mut u32| *v = new[*v as usize];
-        self.rings = self.rings.renumbered(old, new);
         self.centres.iter_mut().for_each(renumber);
         self.edges.iter_mut().flatten().for_each(renumber);
     }
 
-    /// The child level's points from `points` (this level's, padded), to `out` in order.
-    pub(crate) fn apply(&self, points: &[[f32; 4]], masks: &[FanMasks], out: &mut impl PointSink) {
-        if points.len() < self.rings.vertices() {
+    /// The child level's points from `points` (this level's, padded, whose vertices have
+    /// `rings`), to `out` in order.
+    fn apply(
+        &self,
+        rings: &Rings,
+        points: &[[f32; 4]],
+        masks: &[FanMasks],
+        out: &mut impl PointSink,
+    ) {
+        if points.len() < rings.vertices() {
             return;
         }
         // SAFETY: the centres, the rings and the edges hold vertices of the mesh the step was
@@ -200,7 +234,7 @@ impl Step {
         out.put_all(self.centres.iter().map(|&v| {
             // (Every vertex has a ring here: `Step::new`.)
             let centre = at(v);
-            let moved = match *self.rings.of(v).unwrap_or(&[]) {
+            let moved = match *rings.of(v).unwrap_or(&[]) {
                 // The same sum as below, of a length the compiler sees.
                 [q0, q1, q2, q3, q4, q5] => {
                     ring_sum(&at, centre, &[q0, q1, q2, q3, q4, q5]).scale(regular)
@@ -216,16 +250,8 @@ impl Step {
         );
     }
 
-    /// Number of points of the child level.
-    pub(crate) fn outputs(&self) -> usize {
+    fn outputs(&self) -> usize {
         self.centres.len() + self.edges.len()
-    }
-
-    /// The child level's points, padded.
-    pub(crate) fn padded(&self, points: &[[f32; 4]], masks: &[FanMasks]) -> Vec<[f32; 4]> {
-        let mut out = Vec::with_capacity(self.outputs());
-        self.apply(points, masks, &mut out);
-        out
     }
 }
 
@@ -258,22 +284,27 @@ impl RegularRings {
     /// The closed forms of a Loop level from the triangles `parents` of the level before (its
     /// cells in order, `parent_vertices` vertices) to the output triangles `children` (cell
     /// `t`'s children at `4t..4t + 4`, in the order of `refine::ptq`) on `outputs` vertices.
-    /// `previous` gives the parents' points. `None` when no point qualifies, or when the
-    /// children do not follow that order.
+    /// `previous` gives the parents' points. `refined`, a [`Step`] from the parents, makes
+    /// the evaluator's points the last level's own (its rings are the parents', and these
+    /// keep them). `None` when no point qualifies, or when the children do not follow that
+    /// order.
     pub(crate) fn new(
         parents: &[u32],
         parent_vertices: usize,
         children: &[u32],
         outputs: usize,
         previous: Previous,
-        refined: Option<Box<Step>>,
+        refined: Option<Step>,
     ) -> Option<Self> {
         let (parents, _) = parents.as_chunks::<3>();
         let (child_faces, _) = children.as_chunks::<3>();
         if child_faces.len() != 4 * parents.len() {
             return None;
         }
-        let rings = Rings::new(parents, parent_vertices)?;
+        let (rings, refined) = match refined {
+            Some(Step { rings, children }) => (rings, Some(Box::new(children))),
+            None => (Rings::new(parents, parent_vertices)?, None),
+        };
         let mut given = vec![false; outputs];
         let mut vertex_child = vec![u32::MAX; parent_vertices];
         let (mut edges, mut fan_edges) = (Vec::new(), Vec::new());
@@ -413,8 +444,8 @@ impl RegularRings {
     fn number_parents_as_read(&mut self) {
         let Previous::Nested(_, last) = &mut self.previous else { return };
         let count = self.parent_vertices;
-        let vertex_children = last.centres.len();
-        if last.edges.len() + vertex_children != count {
+        let vertex_children = last.children.centres.len();
+        if last.children.edges.len() + vertex_children != count {
             return;
         }
         let mut first_read = Vec::with_capacity(count);
@@ -448,9 +479,9 @@ impl RegularRings {
         for (v, &n) in new.iter().enumerate() {
             old[n as usize] = v as u32;
         }
-        last.reorder(&old);
+        last.children.reorder(&old);
         if let Some(refined) = &mut self.refined {
-            refined.renumber_inputs(&old, &new);
+            refined.renumber_inputs(&new);
         }
         let renumber = |v: &mut u32| *v = new[*v as usize];
         self.vertices.iter_mut().flat_map(|case| &mut case[..7]).for_each(renumber);
@@ -481,7 +512,7 @@ impl RegularRings {
             + std::mem::size_of_val(&self.children[..])
             + std::mem::size_of_val(&self.fan_vertices[..])
             + std::mem::size_of_val(&self.rest[..]);
-        let refined = self.refined.as_ref().map_or(0, |step| step.bytes());
+        let refined = self.refined.as_ref().map_or(0, |children| children.bytes());
         self.previous.bytes() + self.rings.bytes() + cases as u64 + refined
     }
 
@@ -633,7 +664,7 @@ impl ClosedForms for RegularRings {
         }
         if let Some(refined) = &self.refined {
             let parents = self.parents(control);
-            refined.apply(&parents, &self.masks, &mut Written::new(positions));
+            refined.apply(&self.rings, &parents, &self.masks, &mut Written::new(positions));
             return;
         }
         self.run(control, |out, point, _| {
@@ -657,7 +688,7 @@ impl ClosedForms for RegularRings {
         let mut normals = Normals::<true>::new(normals);
         if let Some(refined) = &self.refined {
             let parents = self.run(control, |out, _, [t1, t2]| normals.push(out, t1, t2));
-            refined.apply(&parents, &self.masks, &mut Written::new(positions));
+            refined.apply(&self.rings, &parents, &self.masks, &mut Written::new(positions));
             return;
         }
         self.run(control, |out, point, [t1, t2]| {
