@@ -684,8 +684,7 @@ mod tests {
     #[test]
     fn positions_go_onto_entries_that_hold_them() {
         let limit = table(vec![0, 3, 5], vec![4, 0, 2, 1, 3], vec![0.5, 0.25, 0.25, 0.6, 0.4]);
-        let refined = table(vec![0, 2, 3], vec![0, 4], vec![0.75, 0.25, 1.0]);
-        let refined = StencilTable { indices: vec![0, 4, 3], ..refined };
+        let refined = table(vec![0, 2, 3], vec![0, 4, 3], vec![0.75, 0.25, 1.0]);
         let shared = limit.clone().with_positions_of(&refined).ok().unwrap();
         assert_eq!(shared.indices, limit.indices);
         assert_eq!(shared.offsets, limit.offsets);
