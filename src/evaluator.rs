@@ -14,8 +14,8 @@ use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{build_stencils, table_too_large, MadeElsewhere, StencilBuild};
 use crate::shared_weights::SharedWeights;
 use crate::smooth_levels::{
-    catmull_clark_faces, catmull_clark_steps, quad_faces, triangle_child, triangle_faces,
-    SmoothLevels,
+    catmull_clark_faces, catmull_clark_steps, loop_steps, quad_faces, triangle_child,
+    triangle_faces, SmoothLevels,
 };
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
@@ -624,7 +624,8 @@ fn closed_previous(
     base: &HalfEdgeMesh,
     levels: usize,
 ) -> Option<(Previous, std::borrow::Cow<'_, HalfEdgeMesh>)> {
-    let (mut steps, [before, last]) = smooth_steps(base, levels.checked_sub(1)?)?;
+    let (mut steps, before) = loop_steps(base, levels.checked_sub(1)?)?;
+    let last = triangle_child(&before);
     let previous = if levels >= 3 {
         // From level 3 the vertex children come from the level before's own closed forms
         // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
@@ -641,7 +642,7 @@ fn closed_previous(
     } else {
         Previous::Steps(steps)
     };
-    Some((previous, last))
+    Some((previous, std::borrow::Cow::Owned(last)))
 }
 
 /// Loop's limit on a closed cage when its closed forms give every point, with the output
@@ -669,25 +670,6 @@ fn closed_loop_rings(
     };
     let rings = RegularRings::new(parents, vertices, &faces.indices, outputs, previous, refined)?;
     (rings.num_points() == outputs && rings.rest().is_empty()).then_some((rings, faces))
-}
-
-/// Loop's smooth rules for `levels` levels from `base` ([`Step`]) and the meshes of the last
-/// two levels (the base's among them at level 1), when every level is a closed mesh with a
-/// closed fan at every vertex.
-fn smooth_steps(
-    base: &HalfEdgeMesh,
-    levels: usize,
-) -> Option<(Vec<Step>, [std::borrow::Cow<'_, HalfEdgeMesh>; 2])> {
-    let mut steps = Vec::with_capacity(levels);
-    let mut meshes = [std::borrow::Cow::Borrowed(base), std::borrow::Cow::Borrowed(base)];
-    for _ in 0..levels {
-        let mesh = &meshes[1];
-        steps.push(Step::new(mesh)?);
-        let child = triangle_child(mesh);
-        meshes.swap(0, 1);
-        meshes[1] = std::borrow::Cow::Owned(child);
-    }
-    Some((steps, meshes))
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ impl SmoothLevels {
     /// lists them); `None` unless every level before the last is a closed triangle mesh with a
     /// closed fan at every vertex.
     pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
-        let (steps, last) = levels_of(base, levels, Step::new, triangle_child)?;
+        let (steps, last) = loop_steps(base, levels)?;
         Some((SmoothLevels::Triangles(steps, fan_masks()), triangle_faces(&last)))
     }
 
@@ -67,6 +67,15 @@ pub(crate) fn catmull_clark_steps(
     levels: usize,
 ) -> Option<(Vec<QuadStep>, Cow<'_, HalfEdgeMesh>)> {
     levels_of(base, levels, QuadStep::new, quad_child)
+}
+
+/// Loop's steps of `levels` levels from `base`, with the mesh of the level before the last
+/// (see [`SmoothLevels::loop_`]).
+pub(crate) fn loop_steps(
+    base: &HalfEdgeMesh,
+    levels: usize,
+) -> Option<(Vec<Step>, Cow<'_, HalfEdgeMesh>)> {
+    levels_of(base, levels, Step::new, triangle_child)
 }
 
 /// Catmull-Clark's output faces after `levels` levels of `base` and the number of output
