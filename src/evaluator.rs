@@ -11,7 +11,9 @@ use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
 use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
-use crate::scheme::{build_stencils, table_too_large, MadeElsewhere, StencilBuild};
+use crate::scheme::{
+    build_level_stencils, build_stencils, table_too_large, MadeElsewhere, StencilBuild,
+};
 use crate::shared_weights::SharedWeights;
 use crate::smooth_levels::{
     catmull_clark_faces, catmull_clark_steps, loop_steps, quad_faces, triangle_child,
@@ -42,6 +44,8 @@ enum NormalSource {
 #[derive(Clone, Debug)]
 pub struct Evaluator {
     table: Table,
+    /// What the evaluator was made from: its table on first use, its level stencils.
+    recipe: Box<Recipe>,
     num_control: usize,
     outputs: usize,
     /// The output faces; the positions are left empty (see `at_build`).
@@ -65,9 +69,16 @@ pub struct Evaluator {
 #[derive(Clone, Debug)]
 enum Table {
     Built(StencilTable),
-    /// The base mesh and the options that make it (such an evaluator has no tags and no
-    /// attributes), and the table once made.
-    Later(Box<(HalfEdgeMesh, Options)>, OnceLock<StencilTable>),
+    /// The table once made (such an evaluator has no attributes).
+    Later(OnceLock<StencilTable>),
+}
+
+/// The base mesh, options and tags of an evaluator.
+#[derive(Clone, Debug)]
+struct Recipe {
+    base: HalfEdgeMesh,
+    options: Options,
+    tags: Tags,
 }
 
 /// The closed form an evaluator runs for the points it gives, the table's rows giving the
@@ -132,7 +143,7 @@ impl Evaluator {
         tags: &Tags,
     ) -> Result<Self> {
         if attributes.is_empty() && tags.is_trivial() && !tags.smooth_triangles {
-            if let Some(evaluator) = Self::from_levels(base, options)? {
+            if let Some(evaluator) = Self::from_levels(base, options, tags)? {
                 return Ok(evaluator);
             }
         }
@@ -197,6 +208,11 @@ impl Evaluator {
             num_control: build.table.num_control_vertices(),
             outputs: build.table.num_stencils(),
             table: Table::Built(build.table),
+            recipe: Box::new(Recipe {
+                base: base.clone(),
+                options: options.clone(),
+                tags: tags.clone(),
+            }),
             faces: build.mesh,
             attributes: channels,
             control: base.positions.as_flattened().to_vec(),
@@ -214,7 +230,7 @@ impl Evaluator {
     /// (`crate::regular_rings`). It holds the output faces and the
     /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
     /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
-    fn from_levels(base: &HalfEdgeMesh, options: &Options) -> Result<Option<Self>> {
+    fn from_levels(base: &HalfEdgeMesh, options: &Options, tags: &Tags) -> Result<Option<Self>> {
         crate::predict::check_guards(base, options)?;
         let levels = options.levels();
         let all =
@@ -252,7 +268,12 @@ impl Evaluator {
             return Ok(None);
         }
         Ok(Some(Evaluator {
-            table: Table::Later(Box::new((base.clone(), options.clone())), OnceLock::new()),
+            table: Table::Later(OnceLock::new()),
+            recipe: Box::new(Recipe {
+                base: base.clone(),
+                options: options.clone(),
+                tags: tags.clone(),
+            }),
             num_control: base.num_vertices(),
             outputs: closed.num_points(),
             faces,
@@ -269,16 +290,33 @@ impl Evaluator {
     /// made on first use when the evaluator left it out (see [`Evaluator::step_vertices`]):
     /// then [`Error::TooLarge`] when it passes the options' `max_bytes`.
     pub fn table(&self) -> Result<&StencilTable> {
-        let (recipe, made) = match &self.table {
+        let made = match &self.table {
             Table::Built(table) => return Ok(table),
-            Table::Later(recipe, made) => (recipe, made),
+            Table::Later(made) => made,
         };
         if let Some(table) = made.get() {
             return Ok(table);
         }
-        let (base, options) = &**recipe;
-        let (build, _) = build_table(base, &[], options, &Tags::default())?;
+        let Recipe { base, options, tags } = &*self.recipe;
+        let (build, _) = build_table(base, &[], options, tags)?;
         Ok(made.get_or_init(|| build.table))
+    }
+
+    /// The stencils level by level, made on each call: table `k` gives level `k + 1`'s
+    /// vertices from level `k`'s (the first from the control vertices). Where the limit's
+    /// masks apply (`limit`, or `normals` of Catmull-Clark, Loop and Quad/Triangle), one table
+    /// more gives the output vertices from the last level's: its limit points (or its own
+    /// points) with the tangents' weights when the evaluator has normals from them. Run in turn, each on the one before's output, they give the frames of
+    /// [`Evaluator::evaluate`] to f32 rounding (OpenSubdiv's `StencilTableFactory` with
+    /// `factorizeIntermediateLevels` off). Their rows are not composed, so they cost a
+    /// fraction of [`Evaluator::table`]'s build and bytes: what a GPU runs, one pass per
+    /// level. [`Error::TooLarge`] when together they pass the options' `max_bytes`.
+    ///
+    /// Normals made from the output faces (bilinear, midpoint, Doo-Sabin, √3) are not in the
+    /// tables, as they are not in [`Evaluator::table`].
+    pub fn level_tables(&self) -> Result<Vec<StencilTable>> {
+        let Recipe { base, options, tags } = &*self.recipe;
+        build_level_stencils(base, options, tags)
     }
 
     /// The output faces: vertex indices, listed face after face.
@@ -385,7 +423,7 @@ impl Evaluator {
     pub fn bytes(&self) -> u64 {
         let table = match &self.table {
             Table::Built(table) => table.bytes(),
-            Table::Later(..) => 0,
+            Table::Later(_) => 0,
         };
         table + self.closed.as_ref().map_or(0, Closed::bytes)
     }

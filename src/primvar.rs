@@ -578,6 +578,12 @@ pub trait Primvar: Sized {
         false
     }
 
+    /// Values that stand for `count` vertices of the level just made, each itself, so that
+    /// the next level's values are made on this level's (level by level stencils, see
+    /// `scheme::build_level_stencils`); `None` for kinds that have no such values.
+    fn restart(&self, _count: usize) -> Option<Self> {
+        None
+    }
     /// True when there is nothing to refine (a [`Rows`] without channels): the hosts then
     /// return `with_capacity(0)` without running the rules.
     fn is_empty(&self) -> bool;

@@ -282,13 +282,39 @@ pub(crate) fn build_stencils(
         if let Some(order) = VertexOrder::for_build(base, attributes, options, tags) {
             // An error is made again in the caller's numbering, so that it names their vertices.
             let build =
-                build_stencils_in(&order.mesh, attributes, options, tags, None, Some(&order));
+                build_stencils_in(&order.mesh, attributes, options, tags, None, Some(&order), None);
             if let Ok(build) = build {
                 return Ok(build);
             }
         }
     }
-    build_stencils_in(base, attributes, options, tags, made_elsewhere, None)
+    build_stencils_in(base, attributes, options, tags, made_elsewhere, None, None)
+}
+
+/// The stencils of `options` level by level (OpenSubdiv's `StencilTableFactory` with
+/// `factorizeIntermediateLevels` off): table `k` gives level `k + 1`'s vertices from level
+/// `k`'s (the first from the control vertices); where the limit's masks run (the limit or its
+/// normals), one table more gives the output vertices from the last level's, with the
+/// tangents' weights. Applied in turn they give what the composed table gives, to f32
+/// rounding.
+///
+/// Why: no row is composed with the rows of the level before, which is most of a composed
+/// table's build (a row of the horse at Catmull-Clark level 2 holds about 11 control points
+/// composed from some 37 products; a level's own row holds 4 to 9), and the tables together
+/// are a third or less of the composed one's bytes. A GPU runs them as one pass per level.
+pub(crate) fn build_level_stencils(
+    base: &HalfEdgeMesh,
+    options: &Options,
+    tags: &Tags,
+) -> Result<Vec<StencilTable>> {
+    let mut tables = Vec::with_capacity(options.levels());
+    let build = build_stencils_in(base, &[], options, tags, None, None, Some(&mut tables))?;
+    tables.push(build.table);
+    let bytes: u64 = tables.iter().map(StencilTable::bytes).sum();
+    if bytes > options.max_bytes {
+        return Err(Error::TooLarge(table_too_large(options.levels(), bytes, options.max_bytes)));
+    }
+    Ok(tables)
 }
 
 /// The base mesh of a stencil build with its vertices renamed in the order its faces first name
@@ -367,6 +393,7 @@ fn build_stencils_in(
     tags: &Tags,
     made_elsewhere: Option<MadeElsewhere<'_>>,
     order: Option<&VertexOrder>,
+    stages: Option<&mut Vec<StencilTable>>,
 ) -> Result<StencilBuild> {
     check_attributes(attributes, base)?;
     check_guards(base, options)?;
@@ -386,7 +413,8 @@ fn build_stencils_in(
     let (fvar, fvar_layout) = attributes::pack_face_varying(attributes);
     let count = attributes.len();
     let mut stencils = None;
-    let mut request = StencilRequest { made_elsewhere, tangents: None };
+    let mut request =
+        StencilRequest { made_elsewhere, tangents: None, stages: stages.is_some().then(Vec::new) };
     let refined = refine_levels(
         Cow::Borrowed(base),
         options,
@@ -407,6 +435,11 @@ fn build_stencils_in(
     let (mut mesh, face_varying) = refined.into_parts();
     let stencils = stencils.unwrap_or_default();
     let what = || too_large(format!("more than {max_bytes}"));
+    if let (Some(out), Some(made)) = (stages, request.stages.take()) {
+        for stage in made {
+            out.push(stage.into_table(what)?);
+        }
+    }
     let mut table = stencils.into_table(what)?;
     if let Some(TangentRows { limit, tangents: [first, second] }) = request.tangents {
         let mismatch = || {
@@ -678,6 +711,10 @@ pub(crate) type MadeElsewhere<'s> = &'s mut dyn FnMut(&PolyMesh) -> Vec<bool>;
 pub(crate) struct StencilRequest<'s, V> {
     pub made_elsewhere: Option<MadeElsewhere<'s>>,
     pub tangents: Option<TangentRows<V>>,
+    /// When asked for, each level's rows but the last on the level before's vertices (not
+    /// composed down to the control vertices), filled in as the levels run: see
+    /// [`build_level_stencils`].
+    pub stages: Option<Vec<V>>,
 }
 
 /// The rows of the limit tangents at the last level's vertices, and the rows of their limit
@@ -902,6 +939,13 @@ fn run_levels<'a, 'f, V: Primvar>(
                 return Ok(Refined::quads(positions, parent, finish(rows, fvar)));
             }
         };
+        // Level by level: this level's rows are a table of their own, and the next level's
+        // start from this level's vertices.
+        if let Some(stages) = stencil.as_deref_mut().and_then(|s| s.stages.as_mut()) {
+            if let Some(restarted) = rows.restart(mesh.num_vertices()) {
+                stages.push(std::mem::replace(&mut rows, restarted));
+            }
+        }
         if level + 1 < levels {
             let done = Progress {
                 level: level + 1,

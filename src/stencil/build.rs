@@ -302,6 +302,10 @@ impl Weights for StencilSum<'_> {
 impl Primvar for Stencils {
     type Sum<'a> = StencilSum<'a>;
 
+    fn restart(&self, count: usize) -> Option<Self> {
+        Some(Stencils::identity(count, self.limit))
+    }
+
     fn sum<'a>(&'a self, he_from: &'a [u32], face_points: Option<&'a Self>) -> StencilSum<'a> {
         let face_points = face_points.unwrap_or(&NO_STENCILS);
         StencilSum {
