@@ -54,10 +54,17 @@ export interface StencilArrays {
   numControlVertices?: number;
 }
 
-/** What createGpuEvaluator reads of an `Evaluator` from `BaseMesh.evaluator()`. */
+/**
+ * What createGpuEvaluator reads of an `Evaluator` from `BaseMesh.evaluator()`: without normals
+ * its `levelStencils()` when it has them (the tables level by level, one GPU pass each), else
+ * its `stencils()` (normals through several f32 levels keep fewer digits than the 1e-5 the
+ * GPU evaluator promises).
+ */
 export interface EvaluatorLike {
   readonly numControlVertices: number;
+  readonly hasNormals?: boolean;
   stencils(): StencilArrays;
+  levelStencils?(): StencilArrays[];
 }
 
 export interface RequestGpuDeviceOptions {
@@ -79,14 +86,17 @@ export interface RequestGpuDeviceOptions {
 export function requestGpuDevice(options?: RequestGpuDeviceOptions): Promise<GPUDeviceType>;
 
 /**
- * Uploads a stencil table to the device: `source` is an Evaluator (`BaseMesh.evaluator()`; its
- * `stencils()` and `numControlVertices` are read) or the table's arrays with
- * `numControlVertices`, the base mesh's vertex count (a field of the arrays or an argument). The arrays are checked once (parallel
- * lengths, offsets rising, indices in range) and copied; throws an Error naming the problem, or
- * the device limit a table exceeds.
+ * Uploads stencil tables to the device: `source` is an Evaluator (`BaseMesh.evaluator()`; its
+ * `levelStencils()`, or `stencils()` when it has only that, and `numControlVertices` are read),
+ * a table's arrays, or a list of tables run in turn, each on the outputs of the one before (as
+ * `Evaluator.levelStencils()` gives them; only the last may have tangent weights), with
+ * `numControlVertices`, the base mesh's vertex count (a field of the arrays or an argument).
+ * The arrays are checked once (parallel lengths, offsets rising, indices in range) and copied;
+ * throws an Error naming the problem (and the table, in a list), or the device limit a table
+ * exceeds. A list runs as one compute pass with a dispatch per table.
  */
-export function createGpuEvaluator(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number })): GpuEvaluator;
-export function createGpuEvaluator(device: GPUDeviceType, source: StencilArrays, numControlVertices: number): GpuEvaluator;
+export function createGpuEvaluator(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number }) | (StencilArrays & { numControlVertices: number })[]): GpuEvaluator;
+export function createGpuEvaluator(device: GPUDeviceType, source: StencilArrays | StencilArrays[], numControlVertices: number): GpuEvaluator;
 
 export interface GpuReadBack {
   /** x, y, z per output vertex. */
@@ -98,8 +108,8 @@ export interface GpuReadBack {
 /** A stencil table on the GPU, with its output buffers. */
 export class GpuEvaluator {
   /** The same as createGpuEvaluator. */
-  constructor(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number }));
-  constructor(device: GPUDeviceType, source: StencilArrays, numControlVertices: number);
+  constructor(device: GPUDeviceType, source: EvaluatorLike | (StencilArrays & { numControlVertices: number }) | (StencilArrays & { numControlVertices: number })[]);
+  constructor(device: GPUDeviceType, source: StencilArrays | StencilArrays[], numControlVertices: number);
   readonly device: GPUDeviceType;
   readonly numControlVertices: number;
   /** The number of output vertices. */

@@ -52,10 +52,12 @@ export async function requestGpuDevice(options = {}) {
 }
 
 /**
- * Uploads a stencil table to `device` and returns a GpuEvaluator. `source` is either an
- * Evaluator from BaseMesh.evaluator() (its stencils() and numControlVertices are read) or the
- * arrays of a table, `{ offsets, indices, weights, tangentWeights?, numControlVertices? }`, with
- * `numControlVertices` given here when the arrays do not carry it.
+ * Uploads stencil tables to `device` and returns a GpuEvaluator. `source` is an Evaluator from
+ * BaseMesh.evaluator() (its levelStencils(), or stencils() for an object that has only that,
+ * and numControlVertices are read), the arrays of one table, `{ offsets, indices, weights,
+ * tangentWeights?, numControlVertices? }`, or an array of such tables run in turn (each on the
+ * one before's outputs, as levelStencils() gives them), with `numControlVertices` given here
+ * when the arrays do not carry it.
  */
 export function createGpuEvaluator(device, source, numControlVertices) {
   return new GpuEvaluator(device, source, numControlVertices);
@@ -67,92 +69,120 @@ export class GpuEvaluator {
       throw new Error(`createGpuEvaluator: the first argument must be a GPUDevice (got ${describe(device)}); ` +
         'get one with await requestGpuDevice()');
     }
-    let stencils = source;
-    if (source && typeof source.stencils === 'function') {
+    let tables = source;
+    if (source && typeof source.levelStencils === 'function' && !source.hasNormals) {
+      // The levels' own tables: no composed table to build, and less to upload. Not with
+      // normals: tangents of points that went through several f32 levels keep fewer digits
+      // (5e-5 apart from the CPU's on the torus at level 6, past the 1e-5 promised here).
       if (numControlVertices === undefined) numControlVertices = source.numControlVertices;
-      stencils = source.stencils();
+      tables = source.levelStencils();
+    } else if (source && typeof source.stencils === 'function') {
+      if (numControlVertices === undefined) numControlVertices = source.numControlVertices;
+      tables = source.stencils();
     }
-    // Evaluator.stencils() says it too.
-    if (numControlVertices === undefined && stencils) numControlVertices = stencils.numControlVertices;
-    const table = checkTable(stencils, numControlVertices);
+    if (!Array.isArray(tables)) tables = [tables];
+    if (tables.length === 0) {
+      throw new Error('createGpuEvaluator: the list of stencil tables is empty; pass evaluator.levelStencils() or evaluator.stencils()');
+    }
+    // Evaluator.stencils() and levelStencils() say it too.
+    if (numControlVertices === undefined && tables[0]) numControlVertices = tables[0].numControlVertices;
+    const checked = [];
+    let inputs = numControlVertices;
+    tables.forEach((stencils, k) => {
+      const table = checkTable(stencils, inputs, tables.length > 1 ? `table ${k} of ${tables.length}: ` : '');
+      if (table.tangentWeights !== undefined && k + 1 < tables.length) {
+        throw new Error(`createGpuEvaluator: table ${k} of ${tables.length} has tangentWeights; only the last table's give normals`);
+      }
+      checked.push(table);
+      inputs = table.numVertices;
+    });
+    const last = checked[checked.length - 1];
     this.device = device;
     this.numControlVertices = numControlVertices;
-    this.numVertices = table.numVertices;
-    this.hasNormals = table.tangentWeights !== undefined;
+    this.numVertices = last.numVertices;
+    this.hasNormals = last.tangentWeights !== undefined;
     this._lost = null;
     this._destroyed = false;
     this._owned = [];
-    this._controlBuffer = null; // the last control GPUBuffer a bind group was made for
-    this._bindGroup = null;
+    this._controlBuffer = null; // the last control GPUBuffer the first stage's bind group was made for
     device.lost.then((info) => { this._lost = info; });
+    this._control = this._buffer('control points', 12 * numControlVertices, STORAGE | COPY_DST);
+    this.positions = this._buffer('positions', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC);
+    this.normals = this.hasNormals
+      ? this._buffer('normals', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC)
+      : undefined;
+    this._stages = checked.map((table, k) => this._stage(table, k, checked.length));
+    // (For the tests: the last stage's layout.)
+    this._merged = this._stages[this._stages.length - 1].merged;
+    [this._groupsX, this._groupsY] = this._stages[this._stages.length - 1].groups;
+  }
 
-    // ---- sizes against the device's limits
+  /** One table on the device: its buffers, its output (the next one's input), its pipeline and dispatch. */
+  _stage(table, k, count) {
+    const device = this.device;
     const limits = device.limits;
+    const lastStage = k + 1 === count;
+    const normals = lastStage && this.hasNormals;
+    const which = count > 1 ? `table ${k} of ${count}: ` : '';
     const maxBinding = Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
     const nnz = table.indices.length;
     // With normals, the three weights of an entry go to one buffer, interleaved, when it fits:
     // one binding instead of three and one read per entry. Otherwise three bindings.
-    const merged = this.hasNormals && 12 * nnz <= maxBinding;
-    this._merged = merged;
-    const storageBuffers = 5 + (this.hasNormals ? 1 : 0) + (this.hasNormals && !merged ? 2 : 0);
+    const merged = normals && 12 * nnz <= maxBinding;
+    const storageBuffers = 5 + (normals ? 1 : 0) + (normals && !merged ? 2 : 0);
     if (storageBuffers > limits.maxStorageBuffersPerShaderStage) {
       throw new Error(`createGpuEvaluator: the shader needs ${storageBuffers} storage buffers, more than this device's ` +
         `maxStorageBuffersPerShaderStage (${limits.maxStorageBuffersPerShaderStage}); request a device with ` +
         `requiredLimits: { maxStorageBuffersPerShaderStage: ${storageBuffers} } (a core WebGPU device has 8), or ${CPU_FALLBACK}`);
     }
     const sizes = [
-      ['offsets', 4 * (this.numVertices + 1)],
+      ['offsets', 4 * (table.numVertices + 1)],
       ['indices', 4 * nnz],
       [merged ? 'weights and tangent weights (interleaved)' : 'weights', (merged ? 12 : 4) * nnz],
-      ['control points', 12 * numControlVertices],
-      ['positions', 12 * this.numVertices],
+      ['control points', 12 * table.numInputs],
+      [lastStage ? 'positions' : 'level points', 12 * table.numVertices],
     ];
     for (const [what, bytes] of sizes) {
       if (bytes > maxBinding) {
-        throw new Error(`createGpuEvaluator: the table's ${what} need ${bytes} bytes, more than this device allows in one ` +
+        throw new Error(`createGpuEvaluator: ${which}the table's ${what} need ${bytes} bytes, more than this device allows in one ` +
           `storage buffer (maxStorageBufferBindingSize ${limits.maxStorageBufferBindingSize}, maxBufferSize ` +
           `${limits.maxBufferSize}); request the device with requestGpuDevice(), which raises both to the adapter's ` +
           `maximum, or use fewer levels, or ${CPU_FALLBACK}`);
       }
     }
-
-    // ---- buffers
-    this._offsets = this._upload('offsets', table.offsets);
-    this._indices = this._upload('indices', table.indices);
+    const stage = { numVertices: table.numVertices, numInputs: table.numInputs, merged, normals, bindGroup: null };
+    stage.offsets = this._upload('offsets', table.offsets);
+    stage.indices = this._upload('indices', table.indices);
     if (merged) {
       const [t1, t2] = table.tangentWeights;
-      this._weights = this._upload('weights', null, 12 * nnz, (mapped) => {
+      stage.weights = this._upload('weights', null, 12 * nnz, (mapped) => {
         const out = new Float32Array(mapped);
         const w = table.weights;
-        for (let k = 0, j = 0; k < nnz; k++, j += 3) {
-          out[j] = w[k];
-          out[j + 1] = t1[k];
-          out[j + 2] = t2[k];
+        for (let i = 0, j = 0; i < nnz; i++, j += 3) {
+          out[j] = w[i];
+          out[j + 1] = t1[i];
+          out[j + 2] = t2[i];
         }
       });
     } else {
-      this._weights = this._upload('weights', table.weights);
-      if (this.hasNormals) {
-        this._tangents1 = this._upload('tangent weights 1', table.tangentWeights[0]);
-        this._tangents2 = this._upload('tangent weights 2', table.tangentWeights[1]);
+      stage.weights = this._upload('weights', table.weights);
+      if (normals) {
+        stage.tangents1 = this._upload('tangent weights 1', table.tangentWeights[0]);
+        stage.tangents2 = this._upload('tangent weights 2', table.tangentWeights[1]);
       }
     }
-    this._control = this._buffer('control points', 12 * numControlVertices, STORAGE | COPY_DST);
-    this.positions = this._buffer('positions', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC);
-    this.normals = this.hasNormals
-      ? this._buffer('normals', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC)
-      : undefined;
-    this._pipeline = pipeline(device, this.hasNormals, merged);
-
-    // ---- the dispatch: one invocation per output vertex, 2D when one dimension is not enough
-    const groups = Math.ceil(this.numVertices / WORKGROUP_SIZE);
+    stage.output = lastStage ? this.positions : this._buffer(`level ${k + 1} points`, 12 * table.numVertices, STORAGE);
+    stage.pipeline = pipeline(device, normals, merged);
+    // The dispatch: one invocation per output vertex, 2D when one dimension is not enough.
+    const groups = Math.ceil(table.numVertices / WORKGROUP_SIZE);
     const maxPerDimension = limits.maxComputeWorkgroupsPerDimension;
-    this._groupsX = Math.min(groups, maxPerDimension);
-    this._groupsY = groups === 0 ? 0 : Math.ceil(groups / this._groupsX);
-    if (this._groupsY > maxPerDimension) {
-      throw new Error(`createGpuEvaluator: ${this.numVertices} output vertices need more workgroups than this device can ` +
+    const x = Math.min(groups, maxPerDimension);
+    stage.groups = [x, groups === 0 ? 0 : Math.ceil(groups / x)];
+    if (stage.groups[1] > maxPerDimension) {
+      throw new Error(`createGpuEvaluator: ${which}${table.numVertices} output vertices need more workgroups than this device can ` +
         `dispatch (${maxPerDimension} x ${maxPerDimension} of ${WORKGROUP_SIZE}); use fewer levels, or ${CPU_FALLBACK}`);
     }
+    return stage;
   }
 
   /** Whether destroy() was called. */
@@ -199,9 +229,17 @@ export class GpuEvaluator {
     const own = !encoder;
     const commands = own ? this.device.createCommandEncoder({ label: 'subsurf GpuEvaluator' }) : encoder;
     const pass = commands.beginComputePass({ label: 'subsurf stencils' });
-    pass.setPipeline(this._pipeline);
-    pass.setBindGroup(0, this._bindGroupFor(buffer));
-    pass.dispatchWorkgroups(this._groupsX, this._groupsY);
+    // One dispatch per table, each reading the one before's points (WebGPU orders the
+    // dispatches of a pass and makes each one's writes visible to the next).
+    let input = buffer;
+    this._stages.forEach((stage, k) => {
+      if (stage.numVertices > 0) {
+        pass.setPipeline(stage.pipeline);
+        pass.setBindGroup(0, this._bindGroupFor(stage, k, input));
+        pass.dispatchWorkgroups(stage.groups[0], stage.groups[1]);
+      }
+      input = stage.output;
+    });
     pass.end();
     if (own) this.device.queue.submit([commands.finish()]);
   }
@@ -247,7 +285,7 @@ export class GpuEvaluator {
     this._destroyed = true;
     for (const buffer of this._owned) buffer.destroy();
     this._owned = [];
-    this._bindGroup = null;
+    for (const stage of this._stages) stage.bindGroup = null;
     this._controlBuffer = null;
   }
 
@@ -278,29 +316,31 @@ export class GpuEvaluator {
     return buffer;
   }
 
-  _bindGroupFor(control) {
-    if (this._bindGroup && this._controlBuffer === control) return this._bindGroup;
+  _bindGroupFor(stage, k, input) {
+    // Only the first stage's input changes (the caller's control buffer); the others read the
+    // stage before's output, made once.
+    if (stage.bindGroup && (k > 0 || this._controlBuffer === input)) return stage.bindGroup;
     const entries = [
-      { binding: 0, resource: { buffer: this._offsets } },
-      { binding: 1, resource: { buffer: this._indices } },
-      { binding: 2, resource: { buffer: this._weights } },
-      { binding: 3, resource: { buffer: control, size: Math.max(4, 12 * this.numControlVertices) } },
-      { binding: 4, resource: { buffer: this.positions } },
+      { binding: 0, resource: { buffer: stage.offsets } },
+      { binding: 1, resource: { buffer: stage.indices } },
+      { binding: 2, resource: { buffer: stage.weights } },
+      { binding: 3, resource: { buffer: input, size: Math.max(4, 12 * stage.numInputs) } },
+      { binding: 4, resource: { buffer: stage.output } },
     ];
-    if (this.hasNormals) {
+    if (stage.normals) {
       entries.push({ binding: 5, resource: { buffer: this.normals } });
-      if (!this._merged) {
-        entries.push({ binding: 6, resource: { buffer: this._tangents1 } });
-        entries.push({ binding: 7, resource: { buffer: this._tangents2 } });
+      if (!stage.merged) {
+        entries.push({ binding: 6, resource: { buffer: stage.tangents1 } });
+        entries.push({ binding: 7, resource: { buffer: stage.tangents2 } });
       }
     }
-    this._bindGroup = this.device.createBindGroup({
+    stage.bindGroup = this.device.createBindGroup({
       label: 'subsurf stencils',
-      layout: this._pipeline.getBindGroupLayout(0),
+      layout: stage.pipeline.getBindGroupLayout(0),
       entries,
     });
-    this._controlBuffer = control;
-    return this._bindGroup;
+    if (k === 0) this._controlBuffer = input;
+    return stage.bindGroup;
   }
 }
 
@@ -378,8 +418,8 @@ function pipeline(device, normals, mergedWeights) {
 }
 
 /** Checks a table's arrays once, so that the shader never reads outside them. */
-function checkTable(stencils, numControlVertices) {
-  const where = 'createGpuEvaluator';
+function checkTable(stencils, numControlVertices, which = '') {
+  const where = `createGpuEvaluator: ${which}`.replace(/: $/, '');
   if (!stencils || typeof stencils !== 'object') {
     throw new Error(`${where}: the second argument must be an Evaluator (BaseMesh.evaluator()) or its stencils() ` +
       `{ offsets, indices, weights, tangentWeights? }, got ${describe(stencils)}`);
@@ -447,7 +487,7 @@ function checkTable(stencils, numControlVertices) {
       }
     });
   }
-  return { numVertices, offsets, indices, weights, tangentWeights };
+  return { numVertices, numInputs: numControlVertices, offsets, indices, weights, tangentWeights };
 }
 
 function isGpuBuffer(value) {

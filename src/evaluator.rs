@@ -316,6 +316,16 @@ impl Evaluator {
     /// tables, as they are not in [`Evaluator::table`].
     pub fn level_tables(&self) -> Result<Vec<StencilTable>> {
         let Recipe { base, options, tags } = &*self.recipe;
+        if let Some(Closed::Levels(levels)) = &self.closed {
+            // The steps the frames run, written as tables.
+            let tables = levels.tables();
+            let bytes: u64 = tables.iter().map(StencilTable::bytes).sum();
+            if bytes > options.max_bytes {
+                let message = table_too_large(options.levels(), bytes, options.max_bytes);
+                return Err(Error::TooLarge(message));
+            }
+            return Ok(tables);
+        }
         build_level_stencils(base, options, tags)
     }
 

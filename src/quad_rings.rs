@@ -21,7 +21,7 @@
 
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::regular_rings::{Rings, MAX_VALENCE};
-use crate::stencil::{ClosedForms, Lanes, Normals, PointSink};
+use crate::stencil::{ClosedForms, Lanes, Normals, PointSink, StencilTable, TableWriter};
 
 /// Catmull-Clark's limit on a closed cage: the levels' steps, and the last level's rings.
 #[derive(Clone, Debug)]
@@ -115,6 +115,45 @@ impl QuadStep {
         let mut out = Vec::with_capacity(self.outputs());
         self.apply(points, &mut out);
         out
+    }
+
+    /// The step as a stencil table on this level's vertices: the rows of [`QuadStep::apply`]'s
+    /// sums, each face point spread over its face's corners.
+    pub(crate) fn table(&self) -> StencilTable {
+        let vertices = self.vertex_offsets.len() - 1;
+        let corners = |c: u32| {
+            let span = self.cell_offsets.get(c as usize..c as usize + 2).unwrap_or(&[0, 0]);
+            self.corners.get(span[0] as usize..span[1] as usize).unwrap_or(&[])
+        };
+        let face = |out: &mut TableWriter, c: u32, weight: f32| {
+            let corners = corners(c);
+            let each = weight / corners.len() as f32;
+            corners.iter().for_each(|&x| out.add(x, each));
+        };
+        let entries = 2 * self.around.len() + vertices + self.corners.len() + 6 * self.edges.len();
+        let mut out = TableWriter::new(vertices, self.outputs(), entries);
+        for (v, span) in self.vertex_offsets.windows(2).enumerate() {
+            let around = &self.around[span[0] as usize..span[1] as usize];
+            let n = around.len() as f32;
+            out.add(v as u32, 1.0 - 2.0 / n);
+            for &[q, c] in around {
+                out.add(q, 1.0 / (n * n));
+                face(&mut out, c, 1.0 / (n * n));
+            }
+            out.end_row();
+        }
+        for c in 0..self.cell_offsets.len() as u32 - 1 {
+            face(&mut out, c, 1.0);
+            out.end_row();
+        }
+        for &[a, b, c0, c1] in &self.edges {
+            out.add(a, 0.25);
+            out.add(b, 0.25);
+            face(&mut out, c0, 0.25);
+            face(&mut out, c1, 0.25);
+            out.end_row();
+        }
+        out.finish()
     }
 
     /// The child level's points from `points` (this level's, padded), to `out` in order.

@@ -40,7 +40,7 @@
 //! evaluators' builds 2.6 to 3.4 times a `subdivide` on the horse, and their frames read them.
 
 use crate::mesh::HalfEdgeMesh;
-use crate::stencil::{ClosedForms, Lanes, Normals, PointSink, StencilTable, Written};
+use crate::stencil::{ClosedForms, Lanes, Normals, PointSink, StencilTable, TableWriter, Written};
 
 /// What a closed form reads: the child of a regular vertex (`[v, q0..q5, output]`) or of an
 /// edge between two (`[a, b, c, d, a2, a3, a4, b2, b3, b4, output]`), the points read as byte
@@ -178,6 +178,28 @@ impl Step {
     /// Number of points of the child level.
     pub(crate) fn outputs(&self) -> usize {
         self.children.outputs()
+    }
+
+    /// The step as a stencil table on this level's vertices: the rows of [`Step::apply`]'s
+    /// sums.
+    pub(crate) fn table(&self, masks: &[FanMasks]) -> StencilTable {
+        let children = &self.children;
+        let entries = self.rings.list.len() + children.centres.len() + 4 * children.edges.len();
+        let mut out = TableWriter::new(self.rings.vertices(), self.outputs(), entries);
+        for &v in &children.centres {
+            let ring = self.rings.of(v).unwrap_or(&[]);
+            let beta = masks.get(ring.len()).map_or(0.0, |m| m.beta);
+            out.add(v, 1.0 - ring.len() as f32 * beta);
+            ring.iter().for_each(|&q| out.add(q, beta));
+            out.end_row();
+        }
+        for &[a, b, c, d] in &children.edges {
+            for (x, w) in [(a, 0.375), (b, 0.375), (c, 0.125), (d, 0.125)] {
+                out.add(x, w);
+            }
+            out.end_row();
+        }
+        out.finish()
     }
 
     /// The child level's points, padded.

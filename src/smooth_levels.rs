@@ -13,7 +13,7 @@
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::quad_rings::QuadStep;
 use crate::regular_rings::{fan_masks, FanMasks, Step};
-use crate::stencil::{ClosedForms, Written};
+use crate::stencil::{ClosedForms, StencilTable, Written};
 use std::borrow::Cow;
 
 /// Every level of a closed cage by one scheme's smooth rules.
@@ -48,6 +48,15 @@ impl SmoothLevels {
         match self {
             SmoothLevels::Quads(steps) => steps.last().map_or(0, QuadStep::outputs),
             SmoothLevels::Triangles(steps, _) => steps.last().map_or(0, Step::outputs),
+        }
+    }
+
+    /// The levels as stencil tables, one per level, each on the level before's vertices (see
+    /// `Evaluator::level_tables`), written from the steps: no rule walk, no composition.
+    pub(crate) fn tables(&self) -> Vec<StencilTable> {
+        match self {
+            SmoothLevels::Quads(steps) => steps.iter().map(QuadStep::table).collect(),
+            SmoothLevels::Triangles(steps, masks) => steps.iter().map(|s| s.table(masks)).collect(),
         }
     }
 

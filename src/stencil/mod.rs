@@ -44,6 +44,54 @@ pub struct StencilTable {
     tangent_weights: Option<Box<[Vec<f32>; 2]>>,
 }
 
+/// A table written row by row, each row from weighted control vertices that may repeat (a
+/// repeat adds to the entry it repeats): for rows of a few entries each, a level's own rules
+/// written straight from its topology (`crate::smooth_levels`).
+pub(crate) struct TableWriter {
+    table: StencilTable,
+    row_start: usize,
+}
+
+impl TableWriter {
+    /// No rows yet, on `num_control` control vertices, with room for `rows` rows of `entries`
+    /// entries in all.
+    pub(crate) fn new(num_control: usize, rows: usize, entries: usize) -> Self {
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        let table = StencilTable {
+            num_control: num_control as u32,
+            offsets,
+            indices: Vec::with_capacity(entries),
+            weights: Vec::with_capacity(entries),
+            tangent_weights: None,
+        };
+        TableWriter { table, row_start: 0 }
+    }
+
+    /// Adds `weight` times control vertex `v` to the current row.
+    #[inline]
+    pub(crate) fn add(&mut self, v: u32, weight: f32) {
+        let row = &self.table.indices[self.row_start..];
+        match row.iter().position(|&i| i == v) {
+            Some(k) => self.table.weights[self.row_start + k] += weight,
+            None => {
+                self.table.indices.push(v);
+                self.table.weights.push(weight);
+            }
+        }
+    }
+
+    /// Ends the current row; the next `add` starts a new one.
+    pub(crate) fn end_row(&mut self) {
+        self.row_start = self.table.indices.len();
+        self.table.offsets.push(self.row_start as u32);
+    }
+
+    pub(crate) fn finish(self) -> StencilTable {
+        self.table
+    }
+}
+
 impl StencilTable {
     /// Moves row `l` of the first `order.len()` rows to row `order[l]` (`order` a permutation of
     /// those rows); the rows after them stay where they are.

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::evaluator;
+use crate::stencil::StencilTable;
 
 /// A subdivision prepared for many frames: made by `BaseMesh.evaluator(options)`.
 ///
@@ -66,6 +67,21 @@ fn lend_or_new(array: &JsValue, values: &[f32]) -> Float32Array {
         }
     }
     Float32Array::from(values)
+}
+
+/// A stencil table as `{ offsets, indices, weights, tangentWeights?, numControlVertices }`.
+fn table_object(table: &StencilTable) -> JsResult<JsValue> {
+    let object = Object::new();
+    set_field(&object, "offsets", &Uint32Array::from(table.offsets()))?;
+    set_field(&object, "indices", &Uint32Array::from(table.indices()))?;
+    set_field(&object, "weights", &Float32Array::from(table.weights()))?;
+    if let Some([first, second]) = table.tangent_weights() {
+        let pair = Array::of2(&Float32Array::from(first), &Float32Array::from(second));
+        set_field(&object, "tangentWeights", &pair)?;
+    }
+    let controls = JsValue::from(table.num_control_vertices() as u32);
+    set_field(&object, "numControlVertices", &controls)?;
+    Ok(object.into())
 }
 
 /// A Float32Array argument copied into `out`, or an error naming `field`.
@@ -132,21 +148,24 @@ impl Evaluator {
     /// on the same entries (the normal is their cross product, normalised).
     #[wasm_bindgen(unchecked_return_type = "StencilArrays")]
     pub fn stencils(&self) -> JsResult<JsValue> {
-        let table = self.inner.table().map_err(js_error)?;
-        let object = Object::new();
-        set_field(&object, "offsets", &Uint32Array::from(table.offsets()))?;
-        set_field(&object, "indices", &Uint32Array::from(table.indices()))?;
-        set_field(&object, "weights", &Float32Array::from(table.weights()))?;
-        if let Some([first, second]) = table.tangent_weights() {
-            let pair = Array::of2(&Float32Array::from(first), &Float32Array::from(second));
-            set_field(&object, "tangentWeights", &pair)?;
+        table_object(self.inner.table().map_err(js_error)?)
+    }
+
+    /// The stencils level by level, as fresh typed arrays (OpenSubdiv's stencil tables with
+    /// `factorizeIntermediateLevels` off): each table as `stencils()` gives it, table `k`'s
+    /// control vertices being the outputs of table `k - 1` (the first's, the base mesh's
+    /// vertices), the last's outputs the evaluator's. Where the limit's masks run (`limit`,
+    /// or `normals` of Catmull-Clark and Loop), the last table holds them, on the last level's
+    /// points. Their rows are not composed: a fraction of `stencils()`'s build and bytes, for
+    /// one GPU pass per table (what `createGpuEvaluator` runs).
+    #[wasm_bindgen(js_name = levelStencils, unchecked_return_type = "StencilArrays[]")]
+    pub fn level_stencils(&self) -> JsResult<JsValue> {
+        let tables = self.inner.level_tables().map_err(js_error)?;
+        let list = Array::new();
+        for table in &tables {
+            list.push(&table_object(table)?);
         }
-        set_field(
-            &object,
-            "numControlVertices",
-            &JsValue::from(table.num_control_vertices() as u32),
-        )?;
-        Ok(object.into())
+        Ok(list.into())
     }
 
     /// Bytes of the stencil table (4 per offset, 8 per entry, 16 with tangent weights); an

@@ -407,13 +407,19 @@ async function run() {
       await S.default();
       if (typeof S.BaseMesh.prototype.evaluator !== 'function') return null;
       const out = [];
-      const cases = [['cube', 'catmull-clark'], ['torus', 'catmull-clark'], ['sheet-with-holes', 'catmull-clark'], ['icosahedron', 'loop'],
-        ['house', 'catmull-clark']];
-      for (const [name, scheme] of cases) {
+      // The limit with normals, and refined points (closed cages: tables written from the
+      // levels' steps); each through the Evaluator (its tables level by level without normals,
+      // its composed table with them), the list of levelStencils() and the composed table.
+      const cases = [['cube', 'catmull-clark', true], ['torus', 'catmull-clark', true], ['sheet-with-holes', 'catmull-clark', true],
+        ['icosahedron', 'loop', true], ['house', 'catmull-clark', true], ['torus', 'catmull-clark', false], ['icosahedron', 'loop', false],
+        ['sheet-with-holes', 'catmull-clark', false]];
+      for (const [name, scheme, limit] of cases) for (const tables of ['evaluator', 'levels', 'composed']) {
         const mesh = S.shape(name);
         const base = new S.BaseMesh(mesh);
-        const evaluator = base.evaluator({ scheme, levels: 2, limit: true, normals: true });
-        const gpu = W.createGpuEvaluator(device, evaluator);
+        const evaluator = base.evaluator({ scheme, levels: 2, limit, normals: limit });
+        const source = { evaluator, levels: evaluator.levelStencils(), composed: evaluator.stencils() }[tables];
+        const levels = evaluator.levelStencils().length;
+        const gpu = W.createGpuEvaluator(device, source);
         const random = T.rng(9);
         // The shape as built, then twisted about z and jittered.
         const moved = mesh.positions.slice();
@@ -428,8 +434,9 @@ async function run() {
           const cpu = evaluator.evaluate(control);
           gpu.evaluate(control);
           const back = await gpu.readBack();
-          out.push({ name, scheme, pose, numVertices: gpu.numVertices, entries: evaluator.stencils().indices.length,
-            positions: T.compare(back.positions, cpu.positions), normals: T.compare(back.normals, cpu.normals) });
+          out.push({ name, scheme, pose, limit, tables, passes: gpu._stages.length, levels, numVertices: gpu.numVertices,
+            entries: evaluator.stencils().indices.length, positions: T.compare(back.positions, cpu.positions),
+            normals: limit ? T.compare(back.normals, cpu.normals) : !('normals' in back) });
         }
         gpu.destroy();
         evaluator.free();
@@ -439,9 +446,15 @@ async function run() {
     });
     if (real === null) fail('the wasm Evaluator', 'the built package has no BaseMesh.evaluator');
     for (const r of real ?? []) {
-      const what = `evaluator ${r.name} (${r.scheme}, levels 2, limit, ${r.numVertices} points, ${r.entries} weights), ${r.pose}`;
+      const what = `evaluator ${r.name} (${r.scheme}, levels 2, ${r.limit ? 'limit' : 'refined'}, ${r.numVertices} points, ${r.entries} weights, ` +
+        `${r.tables}: ${r.passes} pass(es)), ${r.pose}`;
       within(`${what}: positions`, r.positions);
-      within(`${what}: normals`, r.normals);
+      if (r.limit) within(`${what}: normals`, r.normals);
+      else exact(`${what}: no normals`, r.normals, true);
+      // Level by level: a pass per level, and one more for the limit's masks.
+      const levelByLevel = r.tables === 'levels' || (r.tables === 'evaluator' && !r.limit);
+      exact(`${what}: passes`, r.passes, levelByLevel ? r.levels : 1);
+      exact(`${what}: tables`, r.levels, r.limit ? 3 : 2);
     }
 
     // ---- a real table of 1.2 M points (the torus at level 6, limit, normals): GPU vs wasm, timed
@@ -510,6 +523,13 @@ async function run() {
         tangentsLength: await m(() => W.createGpuEvaluator(device, { ...table, tangentWeights: [table.weights, new Float32Array(3)] }, 10)),
         // Positions' weights (summing to 1) given as a tangent's.
         tangentsSum: await m(() => W.createGpuEvaluator(device, { ...table, tangentWeights: [table.weights, table.weights] }, 10)),
+        // Lists of tables run in turn: the second reads the first's 100 outputs.
+        emptyList: await m(() => W.createGpuEvaluator(device, [], 10)),
+        listInputs: await m(() => W.createGpuEvaluator(device, [T.randomTable({ seed: 9, numVertices: 5, numControlVertices: 10 }), table]
+          .map(({ offsets, indices, weights }) => ({ offsets, indices, weights })), 10)),
+        listTangents: await m(() => W.createGpuEvaluator(device,
+          [{ ...table, tangentWeights: [new Float32Array(table.weights.length), new Float32Array(table.weights.length)] },
+            T.randomTable({ seed: 8, numVertices: 20, numControlVertices: 100 })], 10)),
       };
       gpu.destroy();
       out.destroyed = await m(() => gpu.evaluate(new Float32Array(30)));
@@ -559,6 +579,9 @@ async function run() {
     says('indices not a Uint32Array', errors.wrongType, 'stencils.indices must be a Uint32Array');
     says('tangent weights not parallel', errors.tangentsLength, 'tangentWeights[1]', 'must be parallel');
     says('tangent weights not summing to 0', errors.tangentsSum, 'tangentWeights[0]', 'in row', 'must sum to 0');
+    says('an empty list of tables', errors.emptyList, 'list of stencil tables is empty', 'levelStencils()');
+    says('a list whose second table reads past the first\'s outputs', errors.listInputs, 'table 1 of 2', 'only 5 control vertices');
+    says('a list with tangent weights before its last table', errors.listTangents, 'table 0 of 2 has tangentWeights', 'only the last');
     says('destroyed evaluator: evaluate', errors.destroyed, 'destroyed', 'createGpuEvaluator');
     says('destroyed evaluator: readBack', errors.destroyedReadBack, 'destroyed');
     says('lost device: evaluate', errors.lost, 'device was lost', 'destroyed', 'requestGpuDevice()', 'evaluator.evaluate');

@@ -24,6 +24,9 @@ const base = new BaseMesh({ positions: new Float32Array(9), indices: new Uint32A
 const evaluator = base.evaluator({ levels: 2, limit: true, normals: true });
 const fromWasm: GpuEvaluator = createGpuEvaluator(device, evaluator);
 const fromWasmArrays: GpuEvaluator = createGpuEvaluator(device, evaluator.stencils());
+// The tables level by level: a list, run in turn.
+const levels: StencilArrays[] = evaluator.levelStencils();
+const fromLevels: GpuEvaluator = createGpuEvaluator(device, levels, evaluator.numControlVertices);
 
 gpu.evaluate(new Float32Array(3));
 const control: GPUBuffer = device.createBuffer({ size: 12, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
@@ -44,6 +47,7 @@ fromEvaluator.destroy();
 fromArrays.destroy();
 fromWasm.destroy();
 fromWasmArrays.destroy();
+fromLevels.destroy();
 
 // @ts-expect-error: control must be a Float32Array or a GPUBuffer
 gpu.evaluate(new Float64Array(3));
