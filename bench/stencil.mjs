@@ -7,8 +7,10 @@
 // call with the same options (and the time of the table's first use, where the evaluator left
 // it out because a closed form gives every point), both tables' bytes per output point, what
 // our frame reads per point (`Evaluator.bytes`); and the frame left in
-// place (`Evaluator.evaluateView`, views of the module's memory: no copy out). Figures, not
-// assertions.
+// place (`Evaluator.evaluateView`, views of the module's memory: no copy out); and the tables
+// level by level (`Evaluator.levelStencils()`, what the GPU evaluator uploads for an evaluator
+// without normals): their time against the `subdivide` and their bytes per output point.
+// Figures, not assertions.
 //
 //   node bench/stencil.mjs [REPEATS]     (after scripts/build-pkg.sh; default 10 timed frames)
 //
@@ -55,8 +57,8 @@ const median = (times) => [...times].sort((a, b) => a - b)[times.length >> 1];
 const best = (times) => Math.min(...times);
 const timeIt = (n, f) => Array.from({ length: n }, () => { const s = performance.now(); f(); return performance.now() - s; });
 
-console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | in place ns/pt | OSD B/pt | ours B/pt | frame reads B/pt | build/subdivide | table on demand / subdivide |`);
-console.log('|---|---|---|---|---|---|---|---|---|---|---|---|---|');
+console.log(`| case | table | points | OSD ns/pt | ours ns/pt | OSD/ours | ours ms/frame (best) | in place ns/pt | OSD B/pt | ours B/pt | frame reads B/pt | build/subdivide | table on demand / subdivide | level tables / subdivide | level tables B/pt |`);
+console.log('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|');
 for (const [name, path, scheme, level] of cases) {
   const mesh = readObj(readFileSync(path, 'utf8'));
   const base = new BaseMesh({ positions: mesh.positions, indices: mesh.indices, faceSizes: mesh.faceSizes });
@@ -99,12 +101,20 @@ for (const [name, path, scheme, level] of cases) {
     const osdNs = reference ? Number(reference.ns_per_stencil) : NaN;
     // The table and, for Loop at the limit, the closed forms' data (`Evaluator.bytes`).
     const frameBytes = evaluator.bytes / points;
+    // The tables level by level (`levelStencils()`: what the GPU evaluator uploads for an
+    // evaluator without normals), made on each call: first, as a GPU user calls it, before any
+    // composed table is held.
+    const levelStart = performance.now();
+    const levelTables = evaluator.levelStencils();
+    const levelMs = performance.now() - levelStart;
+    const arrayBytes = (t) => t.offsets.byteLength + t.indices.byteLength + t.weights.byteLength * (t.tangentWeights ? 3 : 1);
+    const levelBytes = levelTables.reduce((sum, t) => sum + arrayBytes(t), 0) / points;
     // An evaluator whose closed forms give every point leaves its table out until it is asked
     // for (`stencils()`, `stencilBytes`, the GPU): that first call's time, else 0.
     const start = performance.now();
     const ourBytes = evaluator.stencilBytes / points;
     const onDemandMs = performance.now() - start;
-    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${inPlaceNs.toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${frameBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) | ${(onDemandMs / subdivideMs).toFixed(2)} |`);
+    console.log(`| ${name} ${scheme} L${level} | ${limit ? 'limit + normals' : 'refined'} | ${points} | ${osdNs.toFixed(1)} | ${oursNs.toFixed(1)} | ${(osdNs / oursNs).toFixed(2)} | ${best(times).toFixed(1)} | ${inPlaceNs.toFixed(1)} | ${reference ? Number(reference.bytes_per_stencil).toFixed(1) : '-'} | ${ourBytes.toFixed(1)} | ${frameBytes.toFixed(1)} | ${(buildMs / subdivideMs).toFixed(2)} (${buildMs.toFixed(0)} / ${subdivideMs.toFixed(0)} ms) | ${(onDemandMs / subdivideMs).toFixed(2)} | ${(levelMs / subdivideMs).toFixed(2)} | ${levelBytes.toFixed(1)} |`);
     if (reference && Number(reference.stencils) !== points) console.log(`  (stencil counts differ: OSD ${reference.stencils}, ours ${points})`);
     evaluator.free();
   }

@@ -55,14 +55,15 @@ export interface StencilArrays {
 }
 
 /**
- * What createGpuEvaluator reads of an `Evaluator` from `BaseMesh.evaluator()`: without normals
- * its `levelStencils()` when it has them (the tables level by level, one GPU pass each), else
- * its `stencils()` (normals through several f32 levels keep fewer digits than the 1e-5 the
- * GPU evaluator promises).
+ * What createGpuEvaluator reads of an `Evaluator` from `BaseMesh.evaluator()`: its
+ * `levelStencils()` (the tables level by level, one GPU pass each) when it has no normals and
+ * has left its composed table out (`hasStencilTable` false), else its `stencils()` (normals
+ * through several f32 levels keep fewer digits than the 1e-5 the GPU evaluator promises).
  */
 export interface EvaluatorLike {
   readonly numControlVertices: number;
   readonly hasNormals?: boolean;
+  readonly hasStencilTable?: boolean;
   stencils(): StencilArrays;
   levelStencils?(): StencilArrays[];
 }

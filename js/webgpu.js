@@ -70,10 +70,11 @@ export class GpuEvaluator {
         'get one with await requestGpuDevice()');
     }
     let tables = source;
-    if (source && typeof source.levelStencils === 'function' && !source.hasNormals) {
-      // The levels' own tables: no composed table to build, and less to upload. Not with
-      // normals: tangents of points that went through several f32 levels keep fewer digits
-      // (5e-5 apart from the CPU's on the torus at level 6, past the 1e-5 promised here).
+    if (source && typeof source.levelStencils === 'function' && !source.hasNormals && source.hasStencilTable === false) {
+      // The levels' own tables, where the evaluator left its composed table out: none to
+      // build, and less to upload. Not with normals: tangents of points that went through
+      // several f32 levels keep fewer digits (5e-5 apart from the CPU's on the torus at level
+      // 6, past the 1e-5 promised here).
       if (numControlVertices === undefined) numControlVertices = source.numControlVertices;
       tables = source.levelStencils();
     } else if (source && typeof source.stencils === 'function') {
@@ -111,7 +112,13 @@ export class GpuEvaluator {
     this.normals = this.hasNormals
       ? this._buffer('normals', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC)
       : undefined;
-    this._stages = checked.map((table, k) => this._stage(table, k, checked.length));
+    try {
+      this._stages = checked.map((table, k) => this._stage(table, k, checked.length));
+    } catch (error) {
+      // A table past the device's limits: free what was made before it.
+      for (const buffer of this._owned) buffer.destroy();
+      throw error;
+    }
     // (For the tests: the last stage's layout.)
     this._merged = this._stages[this._stages.length - 1].merged;
     [this._groupsX, this._groupsY] = this._stages[this._stages.length - 1].groups;

@@ -302,6 +302,15 @@ impl Evaluator {
         Ok(made.get_or_init(|| build.table))
     }
 
+    /// Whether the stencil table is made: with the evaluator, or since it was first asked for
+    /// ([`Evaluator::table`]).
+    pub fn has_table(&self) -> bool {
+        match &self.table {
+            Table::Built(_) => true,
+            Table::Later(made) => made.get().is_some(),
+        }
+    }
+
     /// The stencils level by level, made on each call: table `k` gives level `k + 1`'s
     /// vertices from level `k`'s (the first from the control vertices). Where the limit's
     /// masks apply (`limit`, or `normals` of Catmull-Clark, Loop and Quad/Triangle), one table

@@ -132,13 +132,29 @@ impl QuadStep {
         };
         let entries = 2 * self.around.len() + vertices + self.corners.len() + 6 * self.edges.len();
         let mut out = TableWriter::new(vertices, self.outputs(), entries);
+        let quads = self.corners.len() == 4 * (self.cell_offsets.len() - 1);
         for (v, span) in self.vertex_offsets.windows(2).enumerate() {
             let around = &self.around[span[0] as usize..span[1] as usize];
             let n = around.len() as f32;
-            out.add(v as u32, 1.0 - 2.0 / n);
-            for &[q, c] in around {
-                out.add(q, 1.0 / (n * n));
-                face(&mut out, c, 1.0 / (n * n));
+            let v = v as u32;
+            if quads {
+                // Among quads each face point's corners are the vertex, its neighbour `q`, the
+                // corner opposite and the next quad's `q`: so Catmull and Clark's weights
+                // (n - 2)/n + 1/(4n) on the vertex, 3/(2n²) on each neighbour and 1/(4n²) on
+                // each opposite corner, without spreading the face points.
+                out.add(v, 1.0 - 2.0 / n + 0.25 / n);
+                for &[q, c] in around {
+                    let cell = &self.corners[4 * c as usize..4 * c as usize + 4];
+                    let at = cell.iter().position(|&x| x == v).unwrap_or(0);
+                    out.add(q, 1.5 / (n * n));
+                    out.add(cell[(at + 2) % 4], 0.25 / (n * n));
+                }
+            } else {
+                out.add(v, 1.0 - 2.0 / n);
+                for &[q, c] in around {
+                    out.add(q, 1.0 / (n * n));
+                    face(&mut out, c, 1.0 / (n * n));
+                }
             }
             out.end_row();
         }

@@ -151,6 +151,14 @@ impl Evaluator {
         table_object(self.inner.table().map_err(js_error)?)
     }
 
+    /// Whether the stencil table of `stencils()` is made: with the evaluator, or since it was
+    /// first asked for (evaluators whose closed forms give every point leave it out until
+    /// then). `createGpuEvaluator` uploads it when it is, `levelStencils()` otherwise.
+    #[wasm_bindgen(getter, js_name = hasStencilTable)]
+    pub fn has_stencil_table(&self) -> bool {
+        self.inner.has_table()
+    }
+
     /// The stencils level by level, as fresh typed arrays (OpenSubdiv's stencil tables with
     /// `factorizeIntermediateLevels` off): each table as `stencils()` gives it, table `k`'s
     /// control vertices being the outputs of table `k - 1` (the first's, the base mesh's
