@@ -12,7 +12,8 @@ use crate::patches::{RegularPatches, NO_PATCH};
 use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{
-    build_level_stencils, build_stencils, table_too_large, MadeElsewhere, StencilBuild,
+    build_level_stencils, build_stencils, subdivide_mesh_borrowed_with, table_too_large,
+    MadeElsewhere, StencilBuild,
 };
 use crate::shared_weights::SharedWeights;
 use crate::smooth_levels::{
@@ -69,7 +70,7 @@ pub struct Evaluator {
 #[derive(Clone, Debug)]
 enum Table {
     Built(StencilTable),
-    /// The table once made (such an evaluator has no attributes).
+    /// The table once made (such an evaluator has no vertex-varying channel).
     Later(OnceLock<StencilTable>),
 }
 
@@ -142,8 +143,10 @@ impl Evaluator {
         options: &Options,
         tags: &Tags,
     ) -> Result<Self> {
-        if attributes.is_empty() && tags.is_trivial() && !tags.smooth_triangles {
-            if let Some(evaluator) = Self::from_levels(base, options, tags)? {
+        // Face-varying channels (UVs) are fixed at build time: frames never read them.
+        let fixed_channels_only = attributes.iter().all(Attribute::is_face_varying);
+        if fixed_channels_only && tags.is_trivial() && !tags.smooth_triangles {
+            if let Some(evaluator) = Self::from_levels(base, attributes, options, tags)? {
                 return Ok(evaluator);
             }
         }
@@ -230,7 +233,15 @@ impl Evaluator {
     /// (`crate::regular_rings`). It holds the output faces and the
     /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
     /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
-    fn from_levels(base: &HalfEdgeMesh, options: &Options, tags: &Tags) -> Result<Option<Self>> {
+    ///
+    /// Face-varying `attributes` come from one `subdivide` of the base mesh with them (the
+    /// levels' topology does not carry them).
+    fn from_levels(
+        base: &HalfEdgeMesh,
+        attributes: &[Attribute],
+        options: &Options,
+        tags: &Tags,
+    ) -> Result<Option<Self>> {
         crate::predict::check_guards(base, options)?;
         let levels = options.levels();
         let all =
@@ -267,6 +278,18 @@ impl Evaluator {
         if closed.bytes() > options.max_bytes {
             return Ok(None);
         }
+        let channels = if attributes.is_empty() {
+            Vec::new()
+        } else {
+            let refined = subdivide_mesh_borrowed_with(base, attributes, options, tags)?;
+            let (poly, channels) = refined.into_parts();
+            if poly.indices != faces.indices {
+                // The levels' faces are the call's; were they ever not, the table's path keeps
+                // its own.
+                return Ok(None);
+            }
+            channels
+        };
         Ok(Some(Evaluator {
             table: Table::Later(OnceLock::new()),
             recipe: Box::new(Recipe {
@@ -277,7 +300,7 @@ impl Evaluator {
             num_control: base.num_vertices(),
             outputs: closed.num_points(),
             faces,
-            attributes: Vec::new(),
+            attributes: channels,
             control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },

@@ -803,3 +803,30 @@ fn level_tables_are_smaller_than_the_composed_table() {
         }
     }
 }
+
+/// Face-varying channels (UVs) are fixed at build time, so a closed cage with them still gets
+/// the closed forms and leaves its table out; the channels, frames and faces equal
+/// `subdivide`'s.
+#[test]
+fn uvs_keep_the_closed_forms() {
+    let quads = torus(8, 6, 1.0, 0.3);
+    let uv = subsurf::shapes::torus_uv(8, 6);
+    let triangles = icosahedron();
+    // Every corner its own value: seams everywhere.
+    let corners = triangles.indices.len() as u32;
+    let values = (0..2 * corners).map(|i| (i as f32 * 0.37).sin()).collect();
+    let seamed = Attribute::face_varying("uv", 2, values, (0..corners).collect());
+    for (mesh, uv, scheme) in
+        [(&quads, &uv, Scheme::CatmullClark), (&triangles, &seamed, Scheme::Loop)]
+    {
+        for (limit, normals) in [(false, false), (false, true), (true, true)] {
+            let options = options(scheme, 2, limit, normals);
+            let what = format!("{scheme} limit {limit} normals {normals} with uv");
+            let base = HalfEdgeMesh::from_poly(mesh).unwrap();
+            let attributes = std::slice::from_ref(uv);
+            let evaluator = Evaluator::new(&base, attributes, &options, &Tags::default()).unwrap();
+            assert!(!evaluator.has_table(), "{what}: the table was made");
+            check(mesh, attributes, &options, &Tags::default(), &what);
+        }
+    }
+}
