@@ -101,16 +101,48 @@ fn every_scheme_and_mode_equals_subdivide_frame_by_frame() {
         (&triangles, Scheme::Sqrt3),
         (&quads, Scheme::QuadTriangle),
     ];
-    for (mesh, scheme) in cases {
-        for levels in 1..=2 {
+    every_mode(&cases, 2, |mesh, options, what| check(mesh, &[], options, &Tags::default(), what));
+}
+
+/// `run(mesh, options, what)` for each case, level 1 to `max_levels`, with and without `limit`
+/// (where the scheme has a limit rule) and `normals`.
+fn every_mode(
+    cases: &[(&PolyMesh, Scheme)],
+    max_levels: u32,
+    mut run: impl FnMut(&PolyMesh, &Options, &str),
+) {
+    for &(mesh, scheme) in cases {
+        for levels in 1..=max_levels {
             for (limit, normals) in [(false, false), (false, true), (true, false), (true, true)] {
                 if limit && matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
                     continue;
                 }
                 let options = options(scheme, levels, limit, normals);
                 let what = format!("{scheme} level {levels} limit {limit} normals {normals}");
-                check(mesh, &[], &options, &Tags::default(), &what);
+                run(mesh, &options, &what);
             }
+        }
+    }
+}
+
+/// `run(name, scheme, obj)` for every Catmull-Clark and Loop shape of `tests/meshes/osd*/`.
+fn every_osd_shape(mut run: impl FnMut(&str, Scheme, &subsurf::io::obj::ObjMesh)) {
+    let root = env!("CARGO_MANIFEST_DIR");
+    for folder in ["osd", "osd_nonmanifold"] {
+        let mut paths: Vec<_> = std::fs::read_dir(format!("{root}/tests/meshes/{folder}"))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        paths.sort();
+        for path in paths {
+            let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+            let scheme = match &name {
+                n if n.starts_with("catmark_") => Scheme::CatmullClark,
+                n if n.starts_with("loop_") => Scheme::Loop,
+                _ => continue,
+            };
+            let obj = read_obj_with_tags(&std::fs::read_to_string(&path).unwrap()).unwrap();
+            run(&name, scheme, &obj);
         }
     }
 }
@@ -218,58 +250,43 @@ fn bad_input_is_refused_and_the_outputs_stay() {
 /// vertex's own masks where its neighbourhood names a vertex twice.
 #[test]
 fn limit_tables_equal_subdivide_on_every_shape() {
-    let root = env!("CARGO_MANIFEST_DIR");
     let (mut cases, mut normals) = (0, 0);
-    for folder in ["osd", "osd_nonmanifold"] {
-        let mut paths: Vec<_> = std::fs::read_dir(format!("{root}/tests/meshes/{folder}"))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        paths.sort();
-        for path in paths {
-            let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-            let scheme = match &name {
-                n if n.starts_with("catmark_") => Scheme::CatmullClark,
-                n if n.starts_with("loop_") => Scheme::Loop,
-                _ => continue,
-            };
-            let obj = read_obj_with_tags(&std::fs::read_to_string(&path).unwrap()).unwrap();
-            for (tagged, tags) in [("untagged", Tags::default()), ("tagged", obj.tags.clone())] {
-                let options = options(scheme, 2, true, true);
-                let Ok(base) = HalfEdgeMesh::from_poly(&obj.mesh) else { continue };
-                let Ok(evaluator) = Evaluator::new(&base, &[], &options, &tags) else { continue };
-                let control = deform(&obj.mesh.positions, 0.7);
-                let moved = PolyMesh { positions: control.clone(), ..obj.mesh.clone() };
-                let mut want = subdivide_refined_with(&moved, &[], &options, &tags).unwrap();
-                let tangents = want.tangents().map(|[a, b]| (a.to_vec(), b.to_vec()));
-                let want_normals = want.take_normals().unwrap();
-                let n = 3 * evaluator.num_vertices();
-                let (mut positions, mut got_normals) = (vec![0.0; n], vec![0.0; n]);
-                evaluator.evaluate(&control, &mut positions, Some(&mut got_normals)).unwrap();
-                let (want_mesh, _) = want.into_parts();
-                let what = format!("{name}, {tagged}");
-                let tolerance = 1e-5 * diagonal(&want_mesh.positions);
-                assert_close(&positions, &want_mesh.positions, tolerance, &what);
-                cases += 1;
-                if OTHER_SPAN.contains(&name.as_str()) {
+    every_osd_shape(|name, scheme, obj| {
+        for (tagged, tags) in [("untagged", Tags::default()), ("tagged", obj.tags.clone())] {
+            let options = options(scheme, 2, true, true);
+            let Ok(base) = HalfEdgeMesh::from_poly(&obj.mesh) else { continue };
+            let Ok(evaluator) = Evaluator::new(&base, &[], &options, &tags) else { continue };
+            let control = deform(&obj.mesh.positions, 0.7);
+            let moved = PolyMesh { positions: control.clone(), ..obj.mesh.clone() };
+            let mut want = subdivide_refined_with(&moved, &[], &options, &tags).unwrap();
+            let tangents = want.tangents().map(|[a, b]| (a.to_vec(), b.to_vec()));
+            let want_normals = want.take_normals().unwrap();
+            let n = 3 * evaluator.num_vertices();
+            let (mut positions, mut got_normals) = (vec![0.0; n], vec![0.0; n]);
+            evaluator.evaluate(&control, &mut positions, Some(&mut got_normals)).unwrap();
+            let (want_mesh, _) = want.into_parts();
+            let what = format!("{name}, {tagged}");
+            let tolerance = 1e-5 * diagonal(&want_mesh.positions);
+            assert_close(&positions, &want_mesh.positions, tolerance, &what);
+            cases += 1;
+            if OTHER_SPAN.contains(&name) {
+                continue;
+            }
+            let (first, second) = tangents.unwrap();
+            let vec3 = |v: &[f32], i: usize| Vec3::from_slice(&v[3 * i..3 * i + 3]);
+            for v in 0..n / 3 {
+                // Tangents along one line (or none): a normal of rounding noise, which
+                // no two orders of summation need agree on.
+                let (t1, t2) = (vec3(&first, v), vec3(&second, v));
+                if t1.cross(t2).length() <= 1e-3 * t1.length() * t2.length() {
                     continue;
                 }
-                let (first, second) = tangents.unwrap();
-                let vec3 = |v: &[f32], i: usize| Vec3::from_slice(&v[3 * i..3 * i + 3]);
-                for v in 0..n / 3 {
-                    // Tangents along one line (or none): a normal of rounding noise, which
-                    // no two orders of summation need agree on.
-                    let (t1, t2) = (vec3(&first, v), vec3(&second, v));
-                    if t1.cross(t2).length() <= 1e-3 * t1.length() * t2.length() {
-                        continue;
-                    }
-                    let (a, b) = (vec3(&got_normals, v), vec3(&want_normals, v));
-                    assert!(a.dot(b) > 1.0 - 2e-6, "{what}: vertex {v}: {a:?} against {b:?}");
-                    normals += 1;
-                }
+                let (a, b) = (vec3(&got_normals, v), vec3(&want_normals, v));
+                assert!(a.dot(b) > 1.0 - 2e-6, "{what}: vertex {v}: {a:?} against {b:?}");
+                normals += 1;
             }
         }
-    }
+    });
     assert!(cases > 150 && normals > 50_000, "only {cases} cases, {normals} normals");
     println!("{cases} cases, {normals} normals compared");
 }
@@ -743,43 +760,19 @@ fn level_tables_run_in_turn_give_the_frames() {
         (&triangles, Scheme::Sqrt3),
         (&with_hole, Scheme::QuadTriangle),
     ];
-    for (mesh, scheme) in cases {
-        for levels in 1..=3 {
-            for (limit, normals) in [(false, false), (false, true), (true, false), (true, true)] {
-                if limit && matches!(scheme, Scheme::DooSabin | Scheme::Sqrt3) {
-                    continue;
-                }
-                let options = options(scheme, levels, limit, normals);
-                let what = format!("{scheme} level {levels} limit {limit} normals {normals}");
-                assert!(levels_equal_the_frame(mesh, &options, &Tags::default(), &what), "{what}");
-            }
-        }
-    }
+    every_mode(&cases, 3, |mesh, options, what| {
+        assert!(levels_equal_the_frame(mesh, options, &Tags::default(), what), "{what}");
+    });
     // Every Catmull-Clark and Loop shape of OpenSubdiv's, with its tags and without.
-    let root = env!("CARGO_MANIFEST_DIR");
     let mut cases = 0;
-    for folder in ["osd", "osd_nonmanifold"] {
-        let mut paths: Vec<_> = std::fs::read_dir(format!("{root}/tests/meshes/{folder}"))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        paths.sort();
-        for path in paths {
-            let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-            let scheme = match &name {
-                n if n.starts_with("catmark_") => Scheme::CatmullClark,
-                n if n.starts_with("loop_") => Scheme::Loop,
-                _ => continue,
-            };
-            let obj = read_obj_with_tags(&std::fs::read_to_string(&path).unwrap()).unwrap();
-            for tags in [Tags::default(), obj.tags.clone()] {
-                for (limit, normals) in [(false, false), (true, true)] {
-                    let options = options(scheme, 2, limit, normals);
-                    cases += usize::from(levels_equal_the_frame(&obj.mesh, &options, &tags, &name));
-                }
+    every_osd_shape(|name, scheme, obj| {
+        for tags in [Tags::default(), obj.tags.clone()] {
+            for (limit, normals) in [(false, false), (true, true)] {
+                let options = options(scheme, 2, limit, normals);
+                cases += usize::from(levels_equal_the_frame(&obj.mesh, &options, &tags, name));
             }
         }
-    }
+    });
     assert!(cases > 300, "only {cases} cases");
 }
 
