@@ -70,7 +70,7 @@ pub struct Evaluator {
 #[derive(Clone, Debug)]
 enum Table {
     Built(StencilTable),
-    /// The table once made (such an evaluator has no vertex-varying channel).
+    /// The table once made.
     Later(OnceLock<StencilTable>),
 }
 
@@ -143,9 +143,7 @@ impl Evaluator {
         options: &Options,
         tags: &Tags,
     ) -> Result<Self> {
-        // Face-varying channels (UVs) are fixed at build time: frames never read them.
-        let fixed_channels_only = attributes.iter().all(Attribute::is_face_varying);
-        if fixed_channels_only && tags.is_trivial() && !tags.smooth_triangles {
+        if tags.is_trivial() && !tags.smooth_triangles {
             if let Some(evaluator) = Self::from_levels(base, attributes, options, tags)? {
                 return Ok(evaluator);
             }
@@ -234,8 +232,10 @@ impl Evaluator {
     /// levels' topology, and makes its table only when asked for it (the stencil arrays, the
     /// GPU, a vertex-varying channel): no frame reads it. `None` when no closed form applies.
     ///
-    /// Face-varying `attributes` come from one `subdivide` of the base mesh with them (the
-    /// levels' topology does not carry them).
+    /// The channels of `attributes` at build time come from one `subdivide` of the base mesh
+    /// with them (the levels' topology does not carry them): face-varying ones are fixed from
+    /// then on, and a vertex-varying one's frames (`evaluate_attribute`) read the table, made
+    /// on their first call.
     fn from_levels(
         base: &HalfEdgeMesh,
         attributes: &[Attribute],

@@ -10,7 +10,7 @@ use common::{diagonal, OTHER_SPAN};
 use glam::Vec3;
 use subsurf::attributes::Attribute;
 use subsurf::io::obj::read_obj_with_tags;
-use subsurf::scheme::subdivide_refined_with;
+use subsurf::scheme::{stencil_table_mesh, subdivide_refined_with};
 use subsurf::shapes::{cube, grid_with_hole, icosahedron, torus, torus_triangles};
 use subsurf::{Error, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme, StencilTable, Tags};
 
@@ -657,12 +657,19 @@ fn a_table_left_out_is_made_on_first_use() {
         let options = options(scheme, 3, limit, limit);
         let what = format!("{scheme}, limit {limit}");
         let lazy = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
-        let eager =
-            Evaluator::new(&base, std::slice::from_ref(&colour), &options, &Tags::default());
-        let eager = eager.unwrap();
+        // The table an evaluator makes at once (the icosahedron has no patch).
+        let (eager, _) = stencil_table_mesh(&base, &options, &Tags::default()).unwrap();
         let levels_only = lazy.bytes();
         assert!(levels_only < eager.bytes(), "{what}: {levels_only} bytes");
-        assert_eq!(lazy.table().unwrap(), eager.table().unwrap(), "{what}");
+        assert_eq!(lazy.table().unwrap(), &eager, "{what}");
+        // A vertex-varying channel's frames read the table: made on their first call, the same.
+        let coloured =
+            Evaluator::new(&base, std::slice::from_ref(&colour), &options, &Tags::default());
+        let coloured = coloured.unwrap();
+        assert!(!coloured.has_table(), "{what}: made at build");
+        let mut values = vec![0.0; coloured.num_vertices()];
+        coloured.evaluate_attribute(&colour.values, 1, &mut values).unwrap();
+        assert_eq!(coloured.table().unwrap(), &eager, "{what}");
         let table_bytes = lazy.table().unwrap().bytes();
         // At least the result's own arrays, which every call may take (Loop's refined table
         // is smaller than those: no such limit).
@@ -686,11 +693,12 @@ fn a_table_left_out_is_made_on_first_use() {
     // A closed all-quad cage of valence 4: the patches give every point.
     let quads = torus(8, 6, 1.0, 0.3);
     let base = HalfEdgeMesh::from_poly(&quads).unwrap();
-    let colour = Attribute::vertex("colour", 1, vec![0.5; 48]);
     let options = options(Scheme::CatmullClark, 2, true, true);
     let lazy = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
-    let eager = Evaluator::new(&base, std::slice::from_ref(&colour), &options, &Tags::default());
-    let eager = eager.unwrap();
+    // The smooth-triangle rule (no triangle here to change) takes the eager path.
+    let all_quads = Tags { smooth_triangles: true, ..Tags::default() };
+    let eager = Evaluator::new(&base, &[], &options, &all_quads).unwrap();
+    assert!(eager.has_table());
     assert_eq!(lazy.patch_vertices(), lazy.num_vertices());
     assert!(lazy.bytes() < eager.bytes(), "{} bytes", lazy.bytes());
     assert_eq!(lazy.table().unwrap(), eager.table().unwrap(), "torus");
@@ -797,11 +805,11 @@ fn level_tables_are_smaller_than_the_composed_table() {
     }
 }
 
-/// Face-varying channels (UVs) are fixed at build time, so a closed cage with them still gets
-/// the closed forms and leaves its table out; the channels, frames and faces equal
+/// Channels made at build time (UVs, colours) leave a closed cage its closed forms, and its
+/// table out until a channel's frame asks for it; the channels, frames and faces equal
 /// `subdivide`'s.
 #[test]
-fn uvs_keep_the_closed_forms() {
+fn channels_keep_the_closed_forms() {
     let quads = torus(8, 6, 1.0, 0.3);
     let uv = subsurf::shapes::torus_uv(8, 6);
     let triangles = icosahedron();
@@ -814,9 +822,10 @@ fn uvs_keep_the_closed_forms() {
     {
         for (limit, normals) in [(false, false), (false, true), (true, true)] {
             let options = options(scheme, 2, limit, normals);
-            let what = format!("{scheme} limit {limit} normals {normals} with uv");
+            let what = format!("{scheme} limit {limit} normals {normals} with uv and colour");
             let base = HalfEdgeMesh::from_poly(mesh).unwrap();
-            let attributes = std::slice::from_ref(uv);
+            let colour = mesh.positions.iter().map(|x| x * x).collect();
+            let attributes = &[uv.clone(), Attribute::vertex("colour", 3, colour)][..];
             let evaluator = Evaluator::new(&base, attributes, &options, &Tags::default()).unwrap();
             assert!(!evaluator.has_table(), "{what}: the table was made");
             check(mesh, attributes, &options, &Tags::default(), &what);
