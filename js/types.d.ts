@@ -175,9 +175,10 @@ export interface SubdivideResult extends PolygonMesh {
 }
 
 /**
- * An evaluator's stencil table (`Evaluator.stencils()`), OpenSubdiv's `Far::StencilTable` layout:
- * output vertex i is the sum over k from `offsets[i]` to `offsets[i + 1]` of `weights[k]` times
- * control vertex `indices[k]`.
+ * An evaluator's stencil table (`Evaluator.stencils()`, or one of `Evaluator.levelStencils()`,
+ * whose control vertices are the previous table's outputs), OpenSubdiv's `Far::StencilTable`
+ * layout: output vertex i is the sum over k from `offsets[i]` to `offsets[i + 1]` of
+ * `weights[k]` times control vertex `indices[k]`.
  */
 export interface StencilArrays {
   /** One more than there are output vertices; `offsets[0]` is 0. */
@@ -187,6 +188,7 @@ export interface StencilArrays {
   weights: Float32Array;
   /** With normals: the two limit tangents' weights on the same entries; the normal is their cross product, normalised. */
   tangentWeights?: [Float32Array, Float32Array];
+  /** The number of control vertices the table reads (the base mesh's, or the previous level table's outputs). */
   numControlVertices: number;
 }
 

@@ -153,7 +153,8 @@ impl Evaluator {
 
     /// Whether the stencil table of `stencils()` is made: with the evaluator, or since it was
     /// first asked for (evaluators whose closed forms give every point leave it out until
-    /// then). `createGpuEvaluator` uploads it when it is, `levelStencils()` otherwise.
+    /// then). `createGpuEvaluator` uploads `levelStencils()` where it is not made and the
+    /// evaluator has no normals, this table otherwise.
     #[wasm_bindgen(getter, js_name = hasStencilTable)]
     pub fn has_stencil_table(&self) -> bool {
         self.inner.has_table()
@@ -165,7 +166,8 @@ impl Evaluator {
     /// vertices), the last's outputs the evaluator's. Where the limit's masks run (`limit`,
     /// or `normals` of Catmull-Clark and Loop), the last table holds them, on the last level's
     /// points. Their rows are not composed: a fraction of `stencils()`'s build and bytes, for
-    /// one GPU pass per table (what `createGpuEvaluator` runs).
+    /// one GPU pass per table (what `createGpuEvaluator` runs for an evaluator without normals
+    /// that left its composed table out).
     #[wasm_bindgen(js_name = levelStencils, unchecked_return_type = "StencilArrays[]")]
     pub fn level_stencils(&self) -> JsResult<JsValue> {
         let tables = self.inner.level_tables().map_err(js_error)?;
