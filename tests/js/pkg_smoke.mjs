@@ -302,6 +302,45 @@ check('subsurf/webgpu in Node', () => {
   assert.throws(() => webgpu.createGpuEvaluator(undefined, {}, 0), /must be a GPUDevice.*requestGpuDevice/);
 });
 
+// The stencils level by level, as a user's own shader would run them: each table on the one
+// before's outputs (numControlVertices says how many), in f32, gives evaluate's frame; with
+// normals the last table holds the limit's masks and the tangent weights.
+check('levelStencils run in turn give the frame', () => {
+  const mesh = torus(24, 16, 1, 0.3, false);
+  const base = new node.BaseMesh(mesh);
+  const moved = mesh.positions.map((x, i) => x + 0.05 * Math.sin(i));
+  const run = (table, input, width = 3) => {
+    const out = new Float32Array(width * (table.offsets.length - 1));
+    for (let v = 0; v < table.offsets.length - 1; v++) {
+      for (let k = table.offsets[v]; k < table.offsets[v + 1]; k++) {
+        for (let c = 0; c < width; c++) out[width * v + c] = Math.fround(out[width * v + c] + Math.fround(table.weights[k] * input[width * table.indices[k] + c]));
+      }
+    }
+    return out;
+  };
+  for (const [limit, count] of [[false, 2], [true, 3]]) {
+    const evaluator = base.evaluator({ levels: 2, limit, normals: limit });
+    const tables = evaluator.levelStencils();
+    assert.equal(tables.length, count, `limit ${limit}: tables`);
+    assert.equal(tables[0].numControlVertices, mesh.positions.length / 3);
+    let points = moved;
+    tables.forEach((table, k) => {
+      if (k > 0) assert.equal(table.numControlVertices, tables[k - 1].offsets.length - 1, `table ${k}'s inputs`);
+      assert.equal('tangentWeights' in table, limit && k === count - 1, `table ${k}: tangent weights`);
+      points = run(table, points);
+    });
+    const frame = evaluator.evaluate(moved);
+    assert.equal(points.length, frame.positions.length);
+    const worst = points.reduce((m, x, i) => Math.max(m, Math.abs(x - frame.positions[i])), 0);
+    assert.ok(worst < 1e-5, `limit ${limit}: level tables' frame ${worst} from evaluate's`);
+    // The refined closed cage left its composed table out; the level tables did not make it.
+    assert.equal(evaluator.hasStencilTable, false, `limit ${limit}: composed table made`);
+    evaluator.free();
+    assert.throws(() => evaluator.levelStencils(), /levelStencils called after free\(\)/);
+  }
+  base.free();
+});
+
 // A limit table past maxBytes is refused before it takes the memory: the 1M-quad torus at level
 // 2 once built its level's mesh after its stencils had overflowed, and reserved 16-byte entries
 // against a limit counted in 8-byte ones: more than wasm's 4 GB, and the instance aborted
