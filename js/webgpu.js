@@ -105,7 +105,6 @@ export class GpuEvaluator {
     this._lost = null;
     this._destroyed = false;
     this._owned = [];
-    this._controlBuffer = null; // the last control GPUBuffer the first stage's bind group was made for
     device.lost.then((info) => { this._lost = info; });
     this._control = this._buffer('control points', 12 * numControlVertices, STORAGE | COPY_DST);
     this.positions = this._buffer('positions', 12 * this.numVertices, VERTEX | STORAGE | COPY_SRC);
@@ -119,9 +118,6 @@ export class GpuEvaluator {
       for (const buffer of this._owned) buffer.destroy();
       throw error;
     }
-    // (For the tests: the last stage's layout.)
-    this._merged = this._stages[this._stages.length - 1].merged;
-    [this._groupsX, this._groupsY] = this._stages[this._stages.length - 1].groups;
   }
 
   /** One table on the device: its buffers, its output (the next one's input), its pipeline and dispatch. */
@@ -157,7 +153,9 @@ export class GpuEvaluator {
           `maximum, or use fewer levels, or ${CPU_FALLBACK}`);
       }
     }
-    const stage = { numVertices: table.numVertices, numInputs: table.numInputs, merged, normals, bindGroup: null };
+    // `input` is the buffer the bind group was made for: the caller's control for the first
+    // table, which may change between frames; the table before's output for the others.
+    const stage = { numVertices: table.numVertices, numInputs: table.numInputs, merged, normals, bindGroup: null, input: null };
     stage.offsets = this._upload('offsets', table.offsets);
     stage.indices = this._upload('indices', table.indices);
     if (merged) {
@@ -239,14 +237,14 @@ export class GpuEvaluator {
     // One dispatch per table, each reading the one before's points (WebGPU orders the
     // dispatches of a pass and makes each one's writes visible to the next).
     let input = buffer;
-    this._stages.forEach((stage, k) => {
+    for (const stage of this._stages) {
       if (stage.numVertices > 0) {
         pass.setPipeline(stage.pipeline);
-        pass.setBindGroup(0, this._bindGroupFor(stage, k, input));
+        pass.setBindGroup(0, this._bindGroupFor(stage, input));
         pass.dispatchWorkgroups(stage.groups[0], stage.groups[1]);
       }
       input = stage.output;
-    });
+    }
     pass.end();
     if (own) this.device.queue.submit([commands.finish()]);
   }
@@ -292,8 +290,7 @@ export class GpuEvaluator {
     this._destroyed = true;
     for (const buffer of this._owned) buffer.destroy();
     this._owned = [];
-    for (const stage of this._stages) stage.bindGroup = null;
-    this._controlBuffer = null;
+    for (const stage of this._stages) Object.assign(stage, { bindGroup: null, input: null });
   }
 
   _checkUsable(method) {
@@ -323,10 +320,8 @@ export class GpuEvaluator {
     return buffer;
   }
 
-  _bindGroupFor(stage, k, input) {
-    // Only the first stage's input changes (the caller's control buffer); the others read the
-    // stage before's output, made once.
-    if (stage.bindGroup && (k > 0 || this._controlBuffer === input)) return stage.bindGroup;
+  _bindGroupFor(stage, input) {
+    if (stage.bindGroup && stage.input === input) return stage.bindGroup;
     const entries = [
       { binding: 0, resource: { buffer: stage.offsets } },
       { binding: 1, resource: { buffer: stage.indices } },
@@ -346,7 +341,7 @@ export class GpuEvaluator {
       layout: stage.pipeline.getBindGroupLayout(0),
       entries,
     });
-    if (k === 0) this._controlBuffer = input;
+    stage.input = input;
     return stage.bindGroup;
   }
 }

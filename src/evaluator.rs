@@ -12,8 +12,8 @@ use crate::patches::{RegularPatches, NO_PATCH};
 use crate::quad_rings::QuadRings;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{
-    build_level_stencils, build_stencils, subdivide_mesh_borrowed_with, table_too_large,
-    MadeElsewhere, StencilBuild,
+    build_level_stencils, build_stencils, level_tables_within, subdivide_mesh_borrowed_with,
+    table_too_large, MadeElsewhere, StencilBuild,
 };
 use crate::shared_weights::SharedWeights;
 use crate::smooth_levels::{
@@ -348,17 +348,11 @@ impl Evaluator {
     /// tables, as they are not in [`Evaluator::table`].
     pub fn level_tables(&self) -> Result<Vec<StencilTable>> {
         let Recipe { base, options, tags } = &*self.recipe;
-        if let Some(Closed::Levels(levels)) = &self.closed {
+        match &self.closed {
             // The steps the frames run, written as tables.
-            let tables = levels.tables();
-            let bytes: u64 = tables.iter().map(StencilTable::bytes).sum();
-            if bytes > options.max_bytes {
-                let message = table_too_large(options.levels(), bytes, options.max_bytes);
-                return Err(Error::TooLarge(message));
-            }
-            return Ok(tables);
+            Some(Closed::Levels(levels)) => level_tables_within(levels.tables(), options),
+            _ => build_level_stencils(base, options, tags),
         }
-        build_level_stencils(base, options, tags)
     }
 
     /// The output faces: vertex indices, listed face after face.

@@ -310,6 +310,15 @@ pub(crate) fn build_level_stencils(
     let mut tables = Vec::with_capacity(options.levels());
     let build = build_stencils_in(base, &[], options, tags, None, None, Some(&mut tables))?;
     tables.push(build.table);
+    level_tables_within(tables, options)
+}
+
+/// `tables`, the stencils of `options` level by level, unless together they pass
+/// `options.max_bytes` ([`Error::TooLarge`]).
+pub(crate) fn level_tables_within(
+    tables: Vec<StencilTable>,
+    options: &Options,
+) -> Result<Vec<StencilTable>> {
     let bytes: u64 = tables.iter().map(StencilTable::bytes).sum();
     if bytes > options.max_bytes {
         return Err(Error::TooLarge(table_too_large(options.levels(), bytes, options.max_bytes)));

@@ -346,7 +346,7 @@ async function run() {
       gpu.evaluate(control);
       const result = await gpu.readBack();
       gpu.destroy();
-      return { numVertices, dispatch: [gpu._groupsX, gpu._groupsY], positions: T.compare(result.positions, T.cpuEvaluate(table, control).positions) };
+      return { numVertices, dispatch: gpu._stages.at(-1).groups, positions: T.compare(result.positions, T.cpuEvaluate(table, control).positions) };
     });
     within(`${tall.numVertices} rows, dispatched as ${tall.dispatch.join(' x ')} workgroups: positions`, tall.positions);
 
@@ -381,7 +381,7 @@ async function run() {
         const ms = (performance.now() - started) / count;
         const result = await gpu.readBack();
         out.runs.push({
-          name, merged: gpu._merged, uploadMs, ms, count,
+          name, merged: gpu._stages.at(-1).merged, uploadMs, ms, count,
           positions: T.compare(result.positions, reference.positions),
           normals: source.tangentWeights ? T.compare(result.normals, reference.normals) : null,
         });
