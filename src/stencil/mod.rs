@@ -459,6 +459,11 @@ impl StencilTable {
         weight_start: impl Fn(usize) -> usize,
         weights: impl Fn(usize) -> [f32; 3],
     ) {
+        // Natively the normals go four at a time (`Normals`): one by one they were a third of
+        // the horse's tagged limit frame. In wasm one at a time measured 1.05 times faster in
+        // this loop.
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+        let mut normals = Normals::<false>::new(normals);
         let first = |r: usize| {
             let (start, end) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
             let c = if start < end { self.indices[start] as usize } else { usize::MAX };
@@ -481,7 +486,12 @@ impl StencilTable {
             },
             |i, [p, a, b, _]| {
                 p.store_xyz(&mut positions[i]);
-                normals[i] = crate::limit::normal(a.xyz(), b.xyz());
+                #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+                {
+                    normals[i] = crate::limit::normal(a.xyz(), b.xyz());
+                }
+                #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+                normals.push(i, a, b);
             },
         );
     }
