@@ -1,12 +1,15 @@
 //! Stencil tables (`scheme::stencil_table`) on the benchmark tori: the time to build a table
 //! against one `subdivide` call, the time of `StencilTable::evaluate` (positions, width 3) per
 //! output point, and the table's bytes per output point. Median of 5 runs (3 for the builds).
+//! Then the frames of `Evaluator::evaluate` per output point, refined and limit with normals,
+//! median of 15: the torus, and a torus of triangles (Catmull-Clark there takes the steps and
+//! the last level's rings, as on the horse; Loop its closed forms from the level before).
 //! Run with `cargo bench --bench stencil`. Figures, not assertions.
 
 use std::time::{Duration, Instant};
 use subsurf::scheme::stencil_table;
-use subsurf::shapes::torus;
-use subsurf::{subdivide, Options, PolyMesh, Scheme, Tags};
+use subsurf::shapes::{torus, torus_triangles};
+use subsurf::{subdivide, Evaluator, HalfEdgeMesh, Options, PolyMesh, Scheme, Tags};
 
 fn median(runs: usize, mut f: impl FnMut() -> Duration) -> Duration {
     let mut times: Vec<Duration> = (0..runs).map(|_| f()).collect();
@@ -64,5 +67,43 @@ fn main() {
             table.bytes() as f64 / points as f64,
             table.indices().len() as f64 / points as f64,
         );
+    }
+    frames();
+}
+
+/// Evaluator frames: what an animation pays per frame, natively.
+fn frames() {
+    let cases: Vec<(&str, PolyMesh, Scheme)> = vec![
+        ("torus 100k quads", torus(400, 250, 1.0, 0.25), Scheme::CatmullClark),
+        ("torus 100k triangles", torus_triangles(250, 200, 1.0, 0.25), Scheme::CatmullClark),
+        ("torus 100k triangles", torus_triangles(250, 200, 1.0, 0.25), Scheme::Loop),
+    ];
+    println!();
+    println!(
+        "| mesh | scheme | level | points out | refined ns / point | limit + normals ns / point |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for (name, mesh, scheme) in &cases {
+        let base = HalfEdgeMesh::from_poly(mesh).unwrap();
+        let ns = |limit: bool| {
+            let options = Options { limit, normals: limit, ..Options::new(*scheme, 2) };
+            let evaluator = Evaluator::new(&base, &[], &options, &Tags::default()).unwrap();
+            let points = evaluator.num_vertices();
+            let mut positions = vec![0.0; 3 * points];
+            let mut normals = vec![0.0; if limit { 3 * points } else { 0 }];
+            let mut frame = 0;
+            let time = median(15, || {
+                frame += 1;
+                let s = 1.0 + 0.01 * frame as f32;
+                let control: Vec<f32> = mesh.positions.iter().map(|&x| x * s).collect();
+                let start = Instant::now();
+                let normals = limit.then_some(&mut normals[..]);
+                evaluator.evaluate(&control, &mut positions, normals).unwrap();
+                start.elapsed()
+            });
+            (points, time.as_secs_f64() * 1e9 / points as f64)
+        };
+        let ((points, refined), (_, limit)) = (ns(false), ns(true));
+        println!("| {name} | {scheme} | 2 | {points} | {refined:.1} | {limit:.1} |");
     }
 }
