@@ -22,7 +22,7 @@ use crate::smooth_levels::{
 };
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// Where an evaluator's normals come from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,10 +74,12 @@ enum Table {
     Later(OnceLock<StencilTable>),
 }
 
-/// The base mesh, options and tags of an evaluator.
+/// The base mesh, options and tags of an evaluator. The base mesh is shared with its owner
+/// where it has one in an `Arc` ([`Evaluator::new_shared`]: the JS `BaseMesh`), not copied: it
+/// is about as large as the refinement's first level.
 #[derive(Clone, Debug)]
 struct Recipe {
-    base: HalfEdgeMesh,
+    base: Arc<HalfEdgeMesh>,
     options: Options,
     tags: Tags,
 }
@@ -143,8 +145,20 @@ impl Evaluator {
         options: &Options,
         tags: &Tags,
     ) -> Result<Self> {
+        Self::new_shared(&Arc::new(base.clone()), attributes, options, tags)
+    }
+
+    /// [`Evaluator::new`] on a base mesh the caller keeps in an `Arc`: the evaluator holds
+    /// it (for its table on first use and its level stencils) without a copy of its own.
+    pub fn new_shared(
+        held: &Arc<HalfEdgeMesh>,
+        attributes: &[Attribute],
+        options: &Options,
+        tags: &Tags,
+    ) -> Result<Self> {
+        let base = &**held;
         if tags.is_trivial() && !tags.smooth_triangles {
-            if let Some(evaluator) = Self::from_levels(base, attributes, options, tags)? {
+            if let Some(evaluator) = Self::from_levels(held, attributes, options, tags)? {
                 return Ok(evaluator);
             }
         }
@@ -210,7 +224,7 @@ impl Evaluator {
             outputs: build.table.num_stencils(),
             table: Table::Built(build.table),
             recipe: Box::new(Recipe {
-                base: base.clone(),
+                base: Arc::clone(held),
                 options: options.clone(),
                 tags: tags.clone(),
             }),
@@ -237,11 +251,12 @@ impl Evaluator {
     /// then on, and a vertex-varying one's frames (`evaluate_attribute`) read the table, made
     /// on their first call.
     fn from_levels(
-        base: &HalfEdgeMesh,
+        held: &Arc<HalfEdgeMesh>,
         attributes: &[Attribute],
         options: &Options,
         tags: &Tags,
     ) -> Result<Option<Self>> {
+        let base = &**held;
         crate::predict::check_guards(base, options)?;
         let levels = options.levels();
         let all =
@@ -293,7 +308,7 @@ impl Evaluator {
         Ok(Some(Evaluator {
             table: Table::Later(OnceLock::new()),
             recipe: Box::new(Recipe {
-                base: base.clone(),
+                base: Arc::clone(held),
                 options: options.clone(),
                 tags: tags.clone(),
             }),

@@ -209,6 +209,30 @@ fn rows_are_affine_and_tangent_rows_sum_to_zero() {
     }
 }
 
+/// `Evaluator::new_shared` holds the caller's `Arc` of the base mesh instead of a copy, and is
+/// `Evaluator::new` otherwise: the same frames and, on first use, the same table.
+#[test]
+fn a_shared_base_mesh_is_held_not_copied() {
+    let held =
+        std::sync::Arc::new(HalfEdgeMesh::from_poly(&torus_triangles(9, 7, 1.0, 0.3)).unwrap());
+    let options = options(Scheme::CatmullClark, 2, true, true);
+    let shared = Evaluator::new_shared(&held, &[], &options, &Tags::default()).unwrap();
+    assert_eq!(std::sync::Arc::strong_count(&held), 2, "the evaluator holds the caller's mesh");
+    let own = Evaluator::new(&held, &[], &options, &Tags::default()).unwrap();
+    assert_eq!(std::sync::Arc::strong_count(&held), 2, "Evaluator::new keeps a copy");
+    let n = 3 * own.num_vertices();
+    let frame = |e: &Evaluator| {
+        let (mut positions, mut normals) = (vec![0.0; n], vec![0.0; n]);
+        e.evaluate(held.positions().as_flattened(), &mut positions, Some(&mut normals)).unwrap();
+        (positions, normals)
+    };
+    assert_eq!(frame(&shared), frame(&own));
+    assert!(!shared.has_table(), "a closed cage's table waits for its first use");
+    assert_eq!(shared.table().unwrap(), own.table().unwrap());
+    drop(shared);
+    assert_eq!(std::sync::Arc::strong_count(&held), 1);
+}
+
 #[test]
 fn bad_input_is_refused_and_the_outputs_stay() {
     let base = HalfEdgeMesh::from_poly(&cube()).unwrap();

@@ -25,12 +25,13 @@ pub struct Evaluator {
 
 impl Evaluator {
     pub(super) fn build(
-        mesh: &HalfEdgeMesh,
+        mesh: &std::sync::Arc<HalfEdgeMesh>,
         attributes: &[Attribute],
         options: &Options,
         tags: &Tags,
     ) -> JsResult<Evaluator> {
-        let inner = evaluator::Evaluator::new(mesh, attributes, options, tags).map_err(js_error)?;
+        let inner =
+            evaluator::Evaluator::new_shared(mesh, attributes, options, tags).map_err(js_error)?;
         Ok(Evaluator { inner, control: Vec::new(), positions: Vec::new(), normals: Vec::new() })
     }
 

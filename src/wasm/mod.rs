@@ -181,7 +181,9 @@ fn progress_object(p: Progress) -> Result<JsValue, JsValue> {
 /// ```
 #[wasm_bindgen]
 pub struct BaseMesh {
-    mesh: HalfEdgeMesh,
+    /// Shared with the evaluators made from it, which keep it for their tables on first use;
+    /// `setPositions` copies it once if one still holds it.
+    mesh: std::sync::Arc<HalfEdgeMesh>,
     attributes: Vec<Attribute>,
 }
 
@@ -196,7 +198,7 @@ impl BaseMesh {
         let base = read_half_edge_mesh(mesh).map_err(js_error)?;
         let attributes = read_attributes(mesh).map_err(js_error)?;
         scheme::check_attributes(&attributes, &base).map_err(js_error)?;
-        Ok(BaseMesh { mesh: base, attributes })
+        Ok(BaseMesh { mesh: std::sync::Arc::new(base), attributes })
     }
 
     /// `subdivide(mesh, options, into)` for this mesh, which stays as it is.
@@ -241,7 +243,7 @@ impl BaseMesh {
             return Err(js_error(wrong_array_type("positions", "Float32Array", positions)));
         }
         let positions = copy_vertices(positions).map_err(js_error)?;
-        self.mesh.set_positions(positions).map_err(js_error)
+        std::sync::Arc::make_mut(&mut self.mesh).set_positions(positions).map_err(js_error)
     }
 
     /// Replaces the values of the channel `name` (given to the constructor in `mesh.attributes`):

@@ -140,6 +140,12 @@ for (const [name, api] of [['subsurf/node', node], ["'subsurf' in Node, no init"
     assert.equal(reused.positions, second.positions);
     assert.deepEqual(reused, plain);
     const evaluator = base.evaluator({ levels: 1 });
+    // An evaluator shares its BaseMesh's connectivity for the table it makes on first use:
+    // moving and freeing the BaseMesh changes nothing of it.
+    const limit = { levels: 2, limit: true, normals: true };
+    const lazy = base.evaluator(limit);
+    assert.equal(lazy.hasStencilTable, false, 'the cube is a closed cage: its table waits');
+    base.setPositions(cube().positions.map((x) => 3 * x));
     base.free();
     // The package's entries say what was freed and what to do (freed.js); the bare glue
     // (subsurf.js loaded directly: the last two loaders) keeps wasm-bindgen's own message.
@@ -148,6 +154,11 @@ for (const [name, api] of [['subsurf/node', node], ["'subsurf' in Node, no init"
     assert.throws(() => base.subdivide({ levels: 1 }), freed('BaseMesh\\.subdivide'), 'a freed BaseMesh throws');
     assert.throws(() => base.numVertices, freed('BaseMesh\\.numVertices'), 'and its getters');
     assert.equal(evaluator.evaluate(cube().positions).positions.length, 3 * 26, 'an evaluator outlives its BaseMesh');
+    const fresh = new api.BaseMesh(cube());
+    assert.deepEqual(lazy.stencils(), fresh.evaluator(limit).stencils(), 'its table on first use, after its BaseMesh moved and was freed');
+    assert.deepEqual(lazy.levelStencils(), fresh.evaluator(limit).levelStencils(), 'and its level stencils');
+    lazy.free();
+    fresh.free();
     evaluator.free();
     assert.throws(() => evaluator.evaluate(cube().positions), freed('Evaluator\\.evaluate'), 'a freed Evaluator throws');
     assert.throws(() => evaluator.evaluateView(cube().positions), freed('Evaluator\\.evaluateView'), 'a freed Evaluator throws on evaluateView');
