@@ -17,6 +17,20 @@ fn median(runs: usize, mut f: impl FnMut() -> Duration) -> Duration {
     times[runs / 2]
 }
 
+/// The median time of `frame` over `runs` frames, each on the control positions scaled a
+/// little more (a deformation per frame), the scaling not timed.
+fn median_frame(runs: usize, mesh: &PolyMesh, mut frame: impl FnMut(&[f32])) -> Duration {
+    let mut count = 0;
+    median(runs, || {
+        count += 1;
+        let s = 1.0 + 0.01 * count as f32;
+        let control: Vec<f32> = mesh.positions.iter().map(|&x| x * s).collect();
+        let start = Instant::now();
+        frame(&control);
+        start.elapsed()
+    })
+}
+
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
@@ -46,15 +60,8 @@ fn main() {
             t
         });
         let (table, mut out) = stencil_table(mesh, &options, &tags).unwrap();
-        // A deformation per frame: the control positions scaled a little.
-        let mut frame = 0;
-        let evaluate_time = median(5, || {
-            frame += 1;
-            let s = 1.0 + 0.01 * frame as f32;
-            let control: Vec<f32> = mesh.positions.iter().map(|&x| x * s).collect();
-            let start = Instant::now();
-            table.evaluate(&control, 3, &mut out.positions).unwrap();
-            start.elapsed()
+        let evaluate_time = median_frame(5, mesh, |control| {
+            table.evaluate(control, 3, &mut out.positions).unwrap();
         });
         let points = table.num_stencils();
         println!(
@@ -91,15 +98,9 @@ fn frames() {
             let points = evaluator.num_vertices();
             let mut positions = vec![0.0; 3 * points];
             let mut normals = vec![0.0; if limit { 3 * points } else { 0 }];
-            let mut frame = 0;
-            let time = median(15, || {
-                frame += 1;
-                let s = 1.0 + 0.01 * frame as f32;
-                let control: Vec<f32> = mesh.positions.iter().map(|&x| x * s).collect();
-                let start = Instant::now();
+            let time = median_frame(15, mesh, |control| {
                 let normals = limit.then_some(&mut normals[..]);
-                evaluator.evaluate(&control, &mut positions, normals).unwrap();
-                start.elapsed()
+                evaluator.evaluate(control, &mut positions, normals).unwrap();
             });
             (points, time.as_secs_f64() * 1e9 / points as f64)
         };
