@@ -90,7 +90,7 @@ export class GpuEvaluator {
     const checked = [];
     let inputs = numControlVertices;
     tables.forEach((stencils, k) => {
-      const table = checkTable(stencils, inputs, tables.length > 1 ? `table ${k} of ${tables.length}: ` : '');
+      const table = checkTable(stencils, inputs, tableLabel(k, tables.length));
       if (table.tangentWeights !== undefined && k + 1 < tables.length) {
         throw new Error(`createGpuEvaluator: table ${k} of ${tables.length} has tangentWeights; only the last table's give normals`);
       }
@@ -126,7 +126,7 @@ export class GpuEvaluator {
     const limits = device.limits;
     const lastStage = k + 1 === count;
     const normals = lastStage && this.hasNormals;
-    const which = count > 1 ? `table ${k} of ${count}: ` : '';
+    const which = tableLabel(k, count);
     const maxBinding = Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
     const nnz = table.indices.length;
     // With normals, the three weights of an entry go to one buffer, interleaved, when it fits:
@@ -417,6 +417,11 @@ function pipeline(device, normals, mergedWeights) {
     cache.set(key, result);
   }
   return result;
+}
+
+/** How messages name table `k` of a list of `count`: not at all when it is the only one. */
+function tableLabel(k, count) {
+  return count > 1 ? `table ${k} of ${count}: ` : '';
 }
 
 /** Checks a table's arrays once, so that the shader never reads outside them. */

@@ -45,16 +45,15 @@ enum NormalSource {
 #[derive(Clone, Debug)]
 pub struct Evaluator {
     table: Table,
-    /// What the evaluator was made from: its table on first use, its level stencils.
+    /// What the evaluator was made from: its table on first use, its level stencils, and
+    /// (the base mesh's positions, which no one changes behind an `Arc`) its frame at build
+    /// time.
     recipe: Box<Recipe>,
-    num_control: usize,
     outputs: usize,
     /// The output faces; the positions are left empty (see `at_build`).
     faces: PolyMesh,
     attributes: Vec<Attribute>,
-    /// The control positions the evaluator was built with.
-    control: Vec<f32>,
-    /// The output positions and normals of `control`, on first use.
+    /// The output positions and normals of the base mesh's positions, on first use.
     at_build: OnceLock<(Vec<f32>, Option<Vec<f32>>)>,
     source: NormalSource,
     /// The points made in closed form rather than from their stencil rows, if any; the
@@ -82,6 +81,12 @@ struct Recipe {
     base: Arc<HalfEdgeMesh>,
     options: Options,
     tags: Tags,
+}
+
+impl Recipe {
+    fn new(base: &Arc<HalfEdgeMesh>, options: &Options, tags: &Tags) -> Box<Self> {
+        Box::new(Recipe { base: Arc::clone(base), options: options.clone(), tags: tags.clone() })
+    }
 }
 
 /// The closed form an evaluator runs for the points it gives, the table's rows giving the
@@ -163,6 +168,7 @@ impl Evaluator {
             }
         }
         let (build, patches) = build_table(base, attributes, options, tags)?;
+        debug_assert_eq!(build.table.num_control_vertices(), base.num_vertices());
         let patchable = patchable(options, tags);
         let rings = if patchable || !options.limit || !tags.is_trivial() {
             None
@@ -220,17 +226,11 @@ impl Evaluator {
             _ => None,
         };
         Ok(Evaluator {
-            num_control: build.table.num_control_vertices(),
             outputs: build.table.num_stencils(),
             table: Table::Built(build.table),
-            recipe: Box::new(Recipe {
-                base: Arc::clone(held),
-                options: options.clone(),
-                tags: tags.clone(),
-            }),
+            recipe: Recipe::new(held, options, tags),
             faces: build.mesh,
             attributes: channels,
-            control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source,
             closed,
@@ -307,16 +307,10 @@ impl Evaluator {
         };
         Ok(Some(Evaluator {
             table: Table::Later(OnceLock::new()),
-            recipe: Box::new(Recipe {
-                base: Arc::clone(held),
-                options: options.clone(),
-                tags: tags.clone(),
-            }),
-            num_control: base.num_vertices(),
+            recipe: Recipe::new(held, options, tags),
             outputs: closed.num_points(),
             faces,
             attributes: channels,
-            control: base.positions.as_flattened().to_vec(),
             at_build: OnceLock::new(),
             source: if options.normals { NormalSource::Tangents } else { NormalSource::None },
             closed: Some(closed),
@@ -398,7 +392,8 @@ impl Evaluator {
             let n = 3 * self.num_vertices();
             let mut positions = vec![0.0; n];
             let mut normals = self.has_normals().then(|| vec![0.0; n]);
-            match self.evaluate(&self.control, &mut positions, normals.as_deref_mut()) {
+            let control = self.recipe.base.positions.as_flattened();
+            match self.evaluate(control, &mut positions, normals.as_deref_mut()) {
                 Ok(()) => (positions, normals),
                 Err(_) => Default::default(),
             }
@@ -423,7 +418,7 @@ impl Evaluator {
 
     /// Number of control (base) vertices the evaluator reads.
     pub fn num_control_vertices(&self) -> usize {
-        self.num_control
+        self.recipe.base.num_vertices()
     }
 
     /// How many output vertices [`Evaluator::evaluate`] computes as bicubic patches rather than
