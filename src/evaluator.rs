@@ -4,12 +4,13 @@
 //! OpenSubdiv's `Far::StencilTableFactory` / `LimitStencilTableFactory` with
 //! `Osd::CpuEvaluator::EvalStencils`, behind one type.
 
-use crate::attributes::Attribute;
+use crate::attributes::{Attribute, Channels};
 use crate::error::{Error, Result};
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::options::{Options, Scheme};
 use crate::patches::{RegularPatches, NO_PATCH};
 use crate::quad_rings::QuadRings;
+use crate::refined::Refined;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{
     build_level_stencils, build_stencils, level_tables_within, subdivide_mesh_borrowed_with,
@@ -258,37 +259,7 @@ impl Evaluator {
     ) -> Result<Option<Self>> {
         let base = &**held;
         crate::predict::check_guards(base, options)?;
-        let levels = options.levels();
-        let all =
-            |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
-        let made =
-            if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
-                // Every point on a patch (a closed all-quad cage of valence 4: a torus).
-                catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
-                    let patches =
-                        RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
-                    patches.rest().is_empty().then_some((Closed::Patches(patches), faces))
-                })
-            } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
-                SmoothLevels::catmull_clark(base, levels)
-                    .map(|(form, faces)| (Closed::Levels(form), faces))
-            } else if !options.limit && !options.normals && all(Scheme::Loop) {
-                SmoothLevels::loop_(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
-            } else if all(Scheme::Loop) {
-                // The limit, or refined points with the limit's normals.
-                closed_loop_rings(base, levels, !options.limit)
-                    .map(|(form, faces)| (Closed::Rings(form), faces))
-            } else if all(Scheme::CatmullClark)
-                && (!options.limit || !crate::patches::any_regular(base))
-            {
-                // The limit (where no patch is), or refined points with the limit's normals.
-                catmull_clark_steps(base, levels).and_then(|(steps, last)| {
-                    let faces = quad_faces(&last);
-                    Some((Closed::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
-                })
-            } else {
-                None
-            };
+        let made = closed_forms(base, options);
         let Some((closed, faces)) = made else { return Ok(None) };
         if closed.bytes() > options.max_bytes {
             return Ok(None);
@@ -727,6 +698,77 @@ fn closed_previous(
         Previous::Steps(steps)
     };
     Some((previous, std::borrow::Cow::Owned(last)))
+}
+
+/// A `subdivide` of `base` with the limit or its normals ([`subdivide_mesh_borrowed_with`]'s
+/// positions, normals and faces, to f32 rounding, but no [`Refined::tangents`]), by the closed
+/// forms an evaluator runs each frame, where they give every point: a closed cage with no
+/// tags and no attributes, Catmull-Clark or Loop at every level. The limit masks' walk on the
+/// last level, the mesh it needs and the two tangents' sums cost a `subdivide` about twice
+/// what these take (the horse at level 2). `None` where they do not apply: make that call.
+///
+/// [`Refined::tangents`]: crate::refined::Refined::tangents
+pub fn subdivide_closed(
+    base: &HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+) -> Result<Option<Refined<'static>>> {
+    let shaded = options.limit || options.normals;
+    if !shaded || options.levels() == 0 || !attributes.is_empty() || !tags.is_trivial() {
+        return Ok(None);
+    }
+    if tags.smooth_triangles {
+        return Ok(None);
+    }
+    crate::predict::check_guards(base, options)?;
+    let Some((closed, faces)) = closed_forms(base, options) else { return Ok(None) };
+    let form = closed.form();
+    if !form.rest().is_empty() || closed.bytes() > options.max_bytes {
+        return Ok(None);
+    }
+    let control = pad(base.positions.as_flattened());
+    let mut positions = vec![[0.0; 3]; closed.num_points()];
+    if !options.normals {
+        form.points(&control, &mut positions);
+        let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
+        return Ok(Some(Refined::poly(poly, Channels::default())));
+    }
+    let mut normals = vec![[0.0; 3]; positions.len()];
+    form.points_and_normals(&control, &mut positions, &mut normals);
+    let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
+    Ok(Some(Refined::with_normals(poly, normals.into_flattened())))
+}
+
+/// The closed form that gives every output point of `options` on `base` from the levels'
+/// smooth rules, with the output faces (see [`Evaluator::from_levels`]); `None` where none
+/// applies. Tags and attributes are the caller's to rule out.
+fn closed_forms(base: &HalfEdgeMesh, options: &Options) -> Option<(Closed, PolyMesh)> {
+    let levels = options.levels();
+    let all = |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
+    if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
+        // Every point on a patch (a closed all-quad cage of valence 4: a torus).
+        catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
+            let patches = RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
+            patches.rest().is_empty().then_some((Closed::Patches(patches), faces))
+        })
+    } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
+        SmoothLevels::catmull_clark(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
+    } else if !options.limit && !options.normals && all(Scheme::Loop) {
+        SmoothLevels::loop_(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
+    } else if all(Scheme::Loop) {
+        // The limit, or refined points with the limit's normals.
+        closed_loop_rings(base, levels, !options.limit)
+            .map(|(form, faces)| (Closed::Rings(form), faces))
+    } else if all(Scheme::CatmullClark) && (!options.limit || !crate::patches::any_regular(base)) {
+        // The limit (where no patch is), or refined points with the limit's normals.
+        catmull_clark_steps(base, levels).and_then(|(steps, last)| {
+            let faces = quad_faces(&last);
+            Some((Closed::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
+        })
+    } else {
+        None
+    }
 }
 
 /// Loop's limit on a closed cage when its closed forms give every point, with the output

@@ -84,6 +84,11 @@ impl<'a> Refined<'a> {
         }
     }
 
+    /// A result with listed faces, no channels and these unit normals (three floats per vertex).
+    pub(crate) fn with_normals(poly: PolyMesh, normals: Vec<f32>) -> Self {
+        Refined { normals: Some(normals), ..Refined::poly(poly, Channels::default()) }
+    }
+
     /// This result with vertex normals from its faces ([`crate::limit::face_normals`]) when it
     /// has none yet (the faces become listed ones).
     pub(crate) fn with_face_normals(self) -> Self {

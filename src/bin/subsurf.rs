@@ -10,6 +10,7 @@
 
 use std::process::ExitCode;
 use std::time::Instant;
+use subsurf::evaluator::subdivide_closed;
 use subsurf::io::{read_obj_with, write_obj_to, ObjReadOptions};
 use subsurf::scheme::{Boundary, Options, Scheme};
 use subsurf::{CreaseMethod, FVarLinear, HalfEdgeMesh};
@@ -177,8 +178,13 @@ fn run(args: Args) -> Result<(), String> {
     };
     let (in_v, in_e, in_f) = (mesh.num_vertices(), mesh.num_edges(), mesh.num_cells());
     let t = Instant::now();
+    // Tangents are not written, so the closed forms may give the limit and its normals.
     let refine = |channels| {
-        subsurf::scheme::subdivide_mesh_borrowed_with(&mesh, channels, &options, &tags)
+        let closed = subdivide_closed(&mesh, channels, &options, &tags).transpose();
+        closed
+            .unwrap_or_else(|| {
+                subsurf::scheme::subdivide_mesh_borrowed_with(&mesh, channels, &options, &tags)
+            })
             .map(|mut refined| (refined.take_normals(), refined.into_parts()))
     };
     let (normals, (output, channels)) = refine(&attributes).map_err(|e| e.to_string())?;

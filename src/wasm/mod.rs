@@ -15,6 +15,7 @@
 
 use crate::attributes::{self, Attribute};
 use crate::error::Error;
+use crate::evaluator::subdivide_closed;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::scheme::{self, Boundary, FVarLinear, Options, Progress, Refined, Scheme};
@@ -114,6 +115,12 @@ pub fn subdivide(
     let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
     let attributes = read_attributes(mesh).map_err(js_error)?;
+    if on_progress.is_none() {
+        let closed = subdivide_closed(&base, &attributes, &parsed, &tags).map_err(js_error)?;
+        if let Some(refined) = closed {
+            return Ok(refined_object(&refined, lent)?);
+        }
+    }
     let refined = with_progress(on_progress, |progress| match progress {
         None => scheme::subdivide_mesh_refined_with(base, &attributes, &parsed, &tags),
         Some(progress) => scheme::subdivide_mesh_refined_with_progress(
@@ -212,6 +219,12 @@ impl BaseMesh {
         let on_progress = read_on_progress(options).map_err(js_error)?;
         let lent = Lent::read(into).map_err(js_error)?;
         let (mesh, attributes) = (&self.mesh, &self.attributes);
+        if on_progress.is_none() {
+            let closed = subdivide_closed(mesh, attributes, &parsed, &tags).map_err(js_error)?;
+            if let Some(refined) = closed {
+                return Ok(refined_object(&refined, lent)?);
+            }
+        }
         let refined = with_progress(on_progress, |progress| match progress {
             None => scheme::subdivide_mesh_borrowed_with(mesh, attributes, &parsed, &tags),
             Some(progress) => scheme::subdivide_mesh_borrowed_with_progress(
