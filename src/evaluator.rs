@@ -701,21 +701,25 @@ fn closed_previous(
 }
 
 /// A `subdivide` of `base` with the limit or its normals ([`subdivide_mesh_borrowed_with`]'s
-/// positions, normals and faces, to f32 rounding, but no [`Refined::tangents`]), by the closed
-/// forms an evaluator runs each frame, where they give every point: a closed cage with no
-/// tags and no attributes, Catmull-Clark or Loop at every level. The limit masks' walk on the
-/// last level, the mesh it needs and the two tangents' sums cost a `subdivide` about twice
-/// what these take (the horse at level 2). `None` where they do not apply: make that call.
+/// positions, normals, faces and channels, to f32 rounding, but no [`Refined::tangents`]), by
+/// the closed forms an evaluator runs each frame, where they give every point: a closed cage
+/// with no tags, Catmull-Clark or Loop at every level, and no attributes unless only the
+/// normals are asked for (the points and channels then come from a `subdivide` without them).
+/// The limit masks' walk on the last level, the mesh it needs and the two tangents' sums cost
+/// a `subdivide` about twice what these take (the horse at level 2). `None` where they do not
+/// apply: make that call.
 ///
 /// [`Refined::tangents`]: crate::refined::Refined::tangents
-pub fn subdivide_closed(
-    base: &HalfEdgeMesh,
+pub fn subdivide_closed<'a>(
+    base: &'a HalfEdgeMesh,
     attributes: &[Attribute],
     options: &Options,
     tags: &Tags,
-) -> Result<Option<Refined<'static>>> {
+) -> Result<Option<Refined<'a>>> {
     let shaded = options.limit || options.normals;
-    if !shaded || options.levels() == 0 || !attributes.is_empty() || !tags.is_trivial() {
+    // The attributes' limit (face-varying values along seams included) is the masks' to give.
+    let limited_channels = options.limit && !attributes.is_empty();
+    if !shaded || limited_channels || options.levels() == 0 || !tags.is_trivial() {
         return Ok(None);
     }
     if tags.smooth_triangles {
@@ -736,8 +740,16 @@ pub fn subdivide_closed(
     }
     let mut normals = vec![[0.0; 3]; positions.len()];
     form.points_and_normals(&control, &mut positions, &mut normals);
-    let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
-    Ok(Some(Refined::with_normals(poly, normals.into_flattened())))
+    let normals = normals.into_flattened();
+    if attributes.is_empty() {
+        let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
+        return Ok(Some(Refined::with_normals(poly, normals)));
+    }
+    // The refined points, faces and channels of a call without normals, as the levels number
+    // them: the closed forms' points and faces are the same, to f32 rounding.
+    let plain = Options { normals: false, ..options.clone() };
+    let refined = subdivide_mesh_borrowed_with(base, attributes, &plain, tags)?;
+    Ok(Some(refined.with_given_normals(normals)))
 }
 
 /// The closed form that gives every output point of `options` on `base` from the levels'

@@ -89,6 +89,11 @@ impl<'a> Refined<'a> {
         Refined { normals: Some(normals), ..Refined::poly(poly, Channels::default()) }
     }
 
+    /// This result with `normals` (three floats per vertex) in place of any it had.
+    pub(crate) fn with_given_normals(self, normals: Vec<f32>) -> Self {
+        Refined { normals: Some(normals), ..self }
+    }
+
     /// This result with vertex normals from its faces ([`crate::limit::face_normals`]) when it
     /// has none yet (the faces become listed ones).
     pub(crate) fn with_face_normals(self) -> Self {

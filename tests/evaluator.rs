@@ -603,7 +603,9 @@ fn catmull_clarks_limit_from_the_last_level_equals_the_tables_rows() {
 /// dodecahedron and a quad torus (its limit through the patches), Loop on two triangle cages,
 /// levels 1 to 3, the limit with and without normals and the refined points with the limit's
 /// normals. It leaves out
-/// what it cannot give: a boundary, tags, attributes, other schemes, no normals asked for.
+/// what it cannot give: a boundary, tags, the attributes' limit, other schemes, no normals or
+/// limit asked for. With attributes and the normals alone, the points and channels are
+/// `subdivide`'s without normals, the normals the closed forms'.
 /// It fails with the limit's points given for `limit: false` (checked: the icosahedron's
 /// level-1 points 0.04 off); the closed forms' own weights have their own tests.
 #[test]
@@ -647,6 +649,33 @@ fn subdivide_by_the_closed_forms_equals_subdivide() {
         }
     }
     assert!(compared > 10_000, "only {compared} points");
+    // With attributes, the normals alone: the points and channels of a call without normals.
+    let quads = torus(7, 5, 1.0, 0.3);
+    let color = Attribute::vertex("color", 3, deform(&quads.positions, 1.3));
+    let channels = [subsurf::shapes::torus_uv(7, 5), color];
+    let base = HalfEdgeMesh::from_poly(&quads).unwrap();
+    for scheme in [Scheme::CatmullClark, Scheme::Loop] {
+        let mesh =
+            if scheme == Scheme::Loop { torus_triangles(7, 5, 1.0, 0.3) } else { quads.clone() };
+        let base = if scheme == Scheme::Loop {
+            HalfEdgeMesh::from_poly(&mesh).unwrap()
+        } else {
+            base.clone()
+        };
+        let uv_count = channels[0].indices.as_ref().map_or(0, Vec::len);
+        let channels: &[Attribute] =
+            if uv_count == mesh.indices.len() { &channels } else { &channels[1..] };
+        let options = options(scheme, 2, false, true);
+        let what = format!("{scheme} on a torus with {} channel(s), normals", channels.len());
+        let mut got = subdivide_closed(&base, channels, &options, &none).unwrap().unwrap();
+        let mut want = subdivide_mesh_borrowed_with(&base, channels, &options, &none).unwrap();
+        let (got_normals, want_normals) = (got.take_normals(), want.take_normals());
+        assert_normals(&got_normals.unwrap(), &want_normals.unwrap(), &what);
+        let ((got, got_channels), (want, want_channels)) = (got.into_parts(), want.into_parts());
+        assert_eq!(got, want, "{what}: the points and faces of subdivide");
+        assert_eq!(got_channels, want_channels, "{what}: the channels of subdivide");
+        assert_eq!(got_channels.len(), channels.len(), "{what}");
+    }
     let cube = cube();
     let base = HalfEdgeMesh::from_poly(&cube).unwrap();
     let creased = Tags {
