@@ -719,10 +719,8 @@ pub fn subdivide_closed<'a>(
     let shaded = options.limit || options.normals;
     // The attributes' limit (face-varying values along seams included) is the masks' to give.
     let limited_channels = options.limit && !attributes.is_empty();
-    if !shaded || limited_channels || options.levels() == 0 || !tags.is_trivial() {
-        return Ok(None);
-    }
-    if tags.smooth_triangles {
+    let untagged = tags.is_trivial() && !tags.smooth_triangles;
+    if !shaded || limited_channels || options.levels() == 0 || !untagged {
         return Ok(None);
     }
     crate::predict::check_guards(base, options)?;

@@ -61,10 +61,10 @@ pub(crate) fn push_f32(out: &mut Vec<u8>, x: f32) {
     // Written straight into an array of known length (`ryu::Buffer` handed back a slice of its
     // own, whose copy out was a `memcpy` call per number); the zeros after the text are never
     // an `e`.
-    let mut fixed = [0u8; 16];
-    // SAFETY: `format32` writes at most 16 bytes (an f32's shortest form, sign and exponent
-    // included) at the pointer, and `fixed` holds 16; `x` is finite, as it requires.
-    let count = unsafe { ryu::raw::format32(x, fixed.as_mut_ptr()) }.min(16);
+    let mut fixed = [0u8; 24];
+    // SAFETY: `format32` needs room for Ryū's text of a finite `x` (at most 16 bytes: its
+    // documentation's example gives 16) and `fixed` holds 24, as `ryu::Buffer` does.
+    let count = unsafe { ryu::raw::format32(x, fixed.as_mut_ptr()) }.min(fixed.len());
     let text = &fixed[..count];
     if !fixed.contains(&b'e') {
         // Positional already (Ryū's notation for 1e-5 < |x| < 1e13), with `.0` after whole
