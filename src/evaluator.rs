@@ -13,16 +13,18 @@ use crate::quad_rings::QuadRings;
 use crate::refined::Refined;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{
-    build_level_stencils, build_stencils, level_tables_within, subdivide_mesh_borrowed_with,
-    table_too_large, MadeElsewhere, StencilBuild,
+    build_level_stencils, build_stencils, check_call, level_tables_within, report,
+    subdivide_mesh_borrowed_with, table_too_large, MadeElsewhere, OnProgress, Progress,
+    StencilBuild,
 };
 use crate::shared_weights::SharedWeights;
 use crate::smooth_levels::{
     catmull_clark_faces, catmull_clark_steps, loop_steps, quad_faces, triangle_child,
-    triangle_faces, SmoothLevels,
+    triangle_faces, untold, SmoothLevels, Told,
 };
 use crate::stencil::{pad, AllRows, ClosedForms, StencilTable};
 use crate::tags::Tags;
+use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 
 /// Where an evaluator's normals come from.
@@ -189,7 +191,8 @@ impl Evaluator {
         let quads = match (&patches, options.max_bytes.checked_sub(build.table.bytes())) {
             (None, Some(budget)) if patchable && !tags.smooth_triangles => {
                 let outputs = build.table.num_stencils();
-                let steps = catmull_clark_steps(base, options.levels()).map(|(steps, _)| steps);
+                let steps = catmull_clark_steps(base, options.levels(), &mut untold);
+                let steps = steps.map(|(steps, _)| steps);
                 steps
                     .and_then(|steps| QuadRings::new(steps, &build.mesh, true))
                     .filter(|quads| quads.num_points() == outputs && quads.bytes() <= budget)
@@ -259,7 +262,7 @@ impl Evaluator {
     ) -> Result<Option<Self>> {
         let base = &**held;
         crate::predict::check_guards(base, options)?;
-        let made = closed_forms(base, options);
+        let made = closed_forms(base, options, &mut untold);
         let Some((closed, faces)) = made else { return Ok(None) };
         if closed.bytes() > options.max_bytes {
             return Ok(None);
@@ -653,7 +656,7 @@ fn regular_rings(
             Previous::Control,
             None,
         )?
-    } else if let Some((previous, last)) = closed_previous(base, levels) {
+    } else if let Some((previous, last)) = closed_previous(base, levels, &mut untold) {
         RegularRings::new(&last.he_from, last.num_vertices(), children, outputs, previous, None)?
     } else {
         let previous = Options {
@@ -675,12 +678,16 @@ fn regular_rings(
 /// level by level, on the levels' topology alone (`refine::ptq`, which numbers them as the
 /// refinement does), with that level's mesh; `None` unless every level is a closed mesh with a
 /// closed fan at every vertex.
-fn closed_previous(
-    base: &HalfEdgeMesh,
+fn closed_previous<'b>(
+    base: &'b HalfEdgeMesh,
     levels: usize,
-) -> Option<(Previous, std::borrow::Cow<'_, HalfEdgeMesh>)> {
-    let (mut steps, before) = loop_steps(base, levels.checked_sub(1)?)?;
+    told: &mut Told<'_>,
+) -> Option<(Previous, std::borrow::Cow<'b, HalfEdgeMesh>)> {
+    let (mut steps, before) = loop_steps(base, levels.checked_sub(1)?, told)?;
     let last = triangle_child(&before);
+    if told(levels - 1, &last).is_break() {
+        return None;
+    }
     let previous = if levels >= 3 {
         // From level 3 the vertex children come from the level before's own closed forms
         // (`Previous::Nested`); at level 2 that level is small enough to read as numbered.
@@ -716,63 +723,117 @@ pub fn subdivide_closed<'a>(
     options: &Options,
     tags: &Tags,
 ) -> Result<Option<Refined<'a>>> {
+    closed_call(base, attributes, options, tags, None)
+}
+
+/// [`subdivide_closed`] that tells `progress` after each level, as
+/// [`crate::scheme::subdivide_mesh_borrowed_with_progress`] does, with the same counts: each
+/// level before the last once its mesh is made, the last once the result is; a `Break` ends
+/// the call with [`Error::Cancelled`]. Where the closed forms turn out not to apply after
+/// levels were told (none of the shapes tried: a cage they cannot take shows at level 0), the
+/// `None` leaves the call to the masks, which tell the levels again from the first.
+pub fn subdivide_closed_with_progress<'a>(
+    base: &'a HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    progress: &mut OnProgress<'_>,
+) -> Result<Option<Refined<'a>>> {
+    closed_call(base, attributes, options, tags, Some(progress))
+}
+
+fn closed_call<'a>(
+    base: &'a HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    mut progress: Option<&mut OnProgress<'_>>,
+) -> Result<Option<Refined<'a>>> {
     let shaded = options.limit || options.normals;
     // The attributes' limit (face-varying values along seams included) is the masks' to give.
     let limited_channels = options.limit && !attributes.is_empty();
     let untagged = tags.is_trivial() && !tags.smooth_triangles;
-    if !shaded || limited_channels || options.levels() == 0 || !untagged {
+    let levels = options.levels();
+    if !shaded || limited_channels || levels == 0 || !untagged {
         return Ok(None);
     }
-    crate::predict::check_guards(base, options)?;
-    let Some((closed, faces)) = closed_forms(base, options) else { return Ok(None) };
-    let form = closed.form();
-    if !form.rest().is_empty() || closed.bytes() > options.max_bytes {
-        return Ok(None);
+    // What the call would refuse, it refuses here, before any work.
+    check_call(base, attributes, options)?;
+    // Each level before the last is told as its mesh is made, as the levels of a `subdivide`
+    // are, so that a stop comes before the rest of the work.
+    let mut stopped = None;
+    let mut told = |level, mesh: &HalfEdgeMesh| {
+        let (faces, vertices) = (mesh.num_cells(), mesh.num_vertices());
+        let done = report(progress.as_deref_mut(), Progress { level, levels, faces, vertices });
+        let flow = if done.is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) };
+        stopped = done.err();
+        flow
+    };
+    let made = closed_forms(base, options, &mut told);
+    if let Some(stop) = stopped {
+        return Err(stop);
     }
+    let made = made.filter(|(closed, _)| {
+        closed.form().rest().is_empty() && closed.bytes() <= options.max_bytes
+    });
+    // Found out after levels were told (seldom: a fan that does not close shows at level 0),
+    // the masks' call tells them again from the first.
+    let Some((closed, faces)) = made else { return Ok(None) };
     let control = pad(base.positions.as_flattened());
     let mut positions = vec![[0.0; 3]; closed.num_points()];
-    if !options.normals {
-        form.points(&control, &mut positions);
-        let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
-        return Ok(Some(Refined::poly(poly, Channels::default())));
+    let mut normals = vec![[0.0; 3]; if options.normals { positions.len() } else { 0 }];
+    match options.normals {
+        true => closed.form().points_and_normals(&control, &mut positions, &mut normals),
+        false => closed.form().points(&control, &mut positions),
     }
-    let mut normals = vec![[0.0; 3]; positions.len()];
-    form.points_and_normals(&control, &mut positions, &mut normals);
-    let normals = normals.into_flattened();
-    if attributes.is_empty() {
+    let normals = options.normals.then(|| normals.into_flattened());
+    let refined = if attributes.is_empty() {
         let poly = PolyMesh { positions: positions.into_flattened(), ..faces };
-        return Ok(Some(Refined::with_normals(poly, normals)));
-    }
-    // The refined points, faces and channels of a call without normals, as the levels number
-    // them: the closed forms' points and faces are the same, to f32 rounding.
-    let plain = Options { normals: false, ..options.clone() };
-    let refined = subdivide_mesh_borrowed_with(base, attributes, &plain, tags)?;
+        Refined::poly(poly, Channels::default())
+    } else {
+        // The refined points, faces and channels of a call without normals, as the levels
+        // number them: the closed forms' points and faces are the same, to f32 rounding.
+        let plain = Options { normals: false, ..options.clone() };
+        subdivide_mesh_borrowed_with(base, attributes, &plain, tags)?
+    };
+    let last = Progress {
+        level: levels,
+        levels,
+        faces: refined.num_faces(),
+        vertices: refined.positions().len() / 3,
+    };
+    report(progress, last)?;
     Ok(Some(refined.with_given_normals(normals)))
 }
 
 /// The closed form that gives every output point of `options` on `base` from the levels'
 /// smooth rules, with the output faces (see [`Evaluator::from_levels`]); `None` where none
 /// applies. Tags and attributes are the caller's to rule out.
-fn closed_forms(base: &HalfEdgeMesh, options: &Options) -> Option<(Closed, PolyMesh)> {
+fn closed_forms(
+    base: &HalfEdgeMesh,
+    options: &Options,
+    told: &mut Told<'_>,
+) -> Option<(Closed, PolyMesh)> {
     let levels = options.levels();
     let all = |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
     if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
         // Every point on a patch (a closed all-quad cage of valence 4: a torus).
-        catmull_clark_faces(base, levels).and_then(|(faces, outputs)| {
+        catmull_clark_faces(base, levels, told).and_then(|(faces, outputs)| {
             let patches = RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
             patches.rest().is_empty().then_some((Closed::Patches(patches), faces))
         })
     } else if !options.limit && !options.normals && all(Scheme::CatmullClark) {
-        SmoothLevels::catmull_clark(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
+        SmoothLevels::catmull_clark(base, levels, told)
+            .map(|(form, faces)| (Closed::Levels(form), faces))
     } else if !options.limit && !options.normals && all(Scheme::Loop) {
-        SmoothLevels::loop_(base, levels).map(|(form, faces)| (Closed::Levels(form), faces))
+        SmoothLevels::loop_(base, levels, told).map(|(form, faces)| (Closed::Levels(form), faces))
     } else if all(Scheme::Loop) {
         // The limit, or refined points with the limit's normals.
-        closed_loop_rings(base, levels, !options.limit)
+        closed_loop_rings(base, levels, !options.limit, told)
             .map(|(form, faces)| (Closed::Rings(form), faces))
     } else if all(Scheme::CatmullClark) && (!options.limit || !crate::patches::any_regular(base)) {
         // The limit (where no patch is), or refined points with the limit's normals.
-        catmull_clark_steps(base, levels).and_then(|(steps, last)| {
+        catmull_clark_steps(base, levels, told).and_then(|(steps, last)| {
             let faces = quad_faces(&last);
             Some((Closed::Quads(QuadRings::new(steps, &faces, options.limit)?), faces))
         })
@@ -788,6 +849,7 @@ fn closed_loop_rings(
     base: &HalfEdgeMesh,
     levels: usize,
     refined: bool,
+    told: &mut Told<'_>,
 ) -> Option<(RegularRings, PolyMesh)> {
     if !base.has_simple_edges() || base.is_non_manifold() {
         return None;
@@ -795,7 +857,7 @@ fn closed_loop_rings(
     let (previous, last) = match levels {
         0 => return None,
         1 => (Previous::Control, std::borrow::Cow::Borrowed(base)),
-        _ => closed_previous(base, levels)?,
+        _ => closed_previous(base, levels, told)?,
     };
     let faces = triangle_faces(&last);
     let outputs = crate::refine::ptq::num_child_vertices(&last);

@@ -84,14 +84,10 @@ impl<'a> Refined<'a> {
         }
     }
 
-    /// A result with listed faces, no channels and these unit normals (three floats per vertex).
-    pub(crate) fn with_normals(poly: PolyMesh, normals: Vec<f32>) -> Self {
-        Refined { normals: Some(normals), ..Refined::poly(poly, Channels::default()) }
-    }
-
-    /// This result with `normals` (three floats per vertex) in place of any it had.
-    pub(crate) fn with_given_normals(self, normals: Vec<f32>) -> Self {
-        Refined { normals: Some(normals), ..self }
+    /// This result with `normals` (unit, three floats per vertex, or none) in place of any it
+    /// had.
+    pub(crate) fn with_given_normals(self, normals: Option<Vec<f32>>) -> Self {
+        Refined { normals, ..self }
     }
 
     /// This result with vertex normals from its faces ([`crate::limit::face_normals`]) when it

@@ -509,14 +509,14 @@ pub fn check_attributes(attributes: &[Attribute], mesh: &HalfEdgeMesh) -> Result
     attributes::validate(attributes, mesh.num_vertices(), mesh.num_half_edges())
 }
 
-fn refine_with_attributes<'a>(
-    base: Cow<'a, HalfEdgeMesh>,
+/// Checks `attributes` against `base` and the result's size, channels, tangents and normals
+/// included, against the guards of `options`: what a call refuses before any work.
+pub(crate) fn check_call(
+    base: &HalfEdgeMesh,
     attributes: &[Attribute],
     options: &Options,
-    tags: &Tags,
-    progress: Option<&mut OnProgress<'_>>,
-) -> Result<Refined<'a>> {
-    check_attributes(attributes, &base)?;
+) -> Result<()> {
+    check_attributes(attributes, base)?;
     // The two tangents and the normal add nine floats per vertex.
     let limit_width = if options.limit || options.normals { 9 } else { 0 };
     let sizes = AttributeSizes {
@@ -532,7 +532,17 @@ fn refine_with_attributes<'a>(
             .map(|a| a.item_size as u64)
             .collect(),
     };
-    check_guards_with(&base, options, &sizes)?;
+    check_guards_with(base, options, &sizes)
+}
+
+fn refine_with_attributes<'a>(
+    base: Cow<'a, HalfEdgeMesh>,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &Tags,
+    progress: Option<&mut OnProgress<'_>>,
+) -> Result<Refined<'a>> {
+    check_call(&base, attributes, options)?;
     if attributes.is_empty() {
         // The positions-only instance of the level loop, as the plain calls use: in the one
         // that carries rows, the wasm build refined positions 27 % slower (other inlining).
@@ -687,7 +697,7 @@ fn refine_levels<'a, 'f, V: Primvar>(
 }
 
 /// Tells `progress`, if any, where the call is; a `Break` becomes [`Error::Cancelled`].
-fn report(progress: Option<&mut OnProgress<'_>>, done: Progress) -> Result<()> {
+pub(crate) fn report(progress: Option<&mut OnProgress<'_>>, done: Progress) -> Result<()> {
     match progress.map(|tell| tell(done)) {
         Some(ControlFlow::Break(())) => Err(Error::Cancelled(format!(
             "the progress callback stopped the call after level {} of {}",

@@ -15,6 +15,7 @@ use crate::quad_rings::QuadStep;
 use crate::regular_rings::{fan_masks, FanMasks, Step};
 use crate::stencil::{ClosedForms, StencilTable, Written};
 use std::borrow::Cow;
+use std::ops::ControlFlow;
 
 /// Every level of a closed cage by one scheme's smooth rules.
 #[derive(Clone, Debug)]
@@ -30,16 +31,24 @@ impl SmoothLevels {
     /// Catmull-Clark's `levels` levels of `base`, with the output faces (quads, as
     /// `refine::pqq` lists them; no positions); `None` unless every level before the last is a
     /// closed cage whose every vertex has a closed fan of 3 to `MAX_VALENCE` faces.
-    pub(crate) fn catmull_clark(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
-        let (steps, last) = catmull_clark_steps(base, levels)?;
+    pub(crate) fn catmull_clark(
+        base: &HalfEdgeMesh,
+        levels: usize,
+        told: &mut Told<'_>,
+    ) -> Option<(Self, PolyMesh)> {
+        let (steps, last) = catmull_clark_steps(base, levels, told)?;
         Some((SmoothLevels::Quads(steps), quad_faces(&last)))
     }
 
     /// Loop's `levels` levels of `base`, with the output faces (triangles, as `refine::ptq`
     /// lists them); `None` unless every level before the last is a closed triangle mesh with a
     /// closed fan at every vertex.
-    pub(crate) fn loop_(base: &HalfEdgeMesh, levels: usize) -> Option<(Self, PolyMesh)> {
-        let (steps, last) = loop_steps(base, levels)?;
+    pub(crate) fn loop_(
+        base: &HalfEdgeMesh,
+        levels: usize,
+        told: &mut Told<'_>,
+    ) -> Option<(Self, PolyMesh)> {
+        let (steps, last) = loop_steps(base, levels, told)?;
         Some((SmoothLevels::Triangles(steps, fan_masks()), triangle_faces(&last)))
     }
 
@@ -71,26 +80,32 @@ impl SmoothLevels {
 
 /// Catmull-Clark's steps of `levels` levels from `base`, with the mesh of the level before the
 /// last (see [`SmoothLevels::catmull_clark`]; [`quad_faces`] of it are the output faces).
-pub(crate) fn catmull_clark_steps(
-    base: &HalfEdgeMesh,
+pub(crate) fn catmull_clark_steps<'b>(
+    base: &'b HalfEdgeMesh,
     levels: usize,
-) -> Option<(Vec<QuadStep>, Cow<'_, HalfEdgeMesh>)> {
-    levels_of(base, levels, QuadStep::new, quad_child)
+    told: &mut Told<'_>,
+) -> Option<(Vec<QuadStep>, Cow<'b, HalfEdgeMesh>)> {
+    levels_of(base, levels, QuadStep::new, quad_child, told)
 }
 
 /// Loop's steps of `levels` levels from `base`, with the mesh of the level before the last
 /// (see [`SmoothLevels::loop_`]).
-pub(crate) fn loop_steps(
-    base: &HalfEdgeMesh,
+pub(crate) fn loop_steps<'b>(
+    base: &'b HalfEdgeMesh,
     levels: usize,
-) -> Option<(Vec<Step>, Cow<'_, HalfEdgeMesh>)> {
-    levels_of(base, levels, Step::new, triangle_child)
+    told: &mut Told<'_>,
+) -> Option<(Vec<Step>, Cow<'b, HalfEdgeMesh>)> {
+    levels_of(base, levels, Step::new, triangle_child, told)
 }
 
 /// Catmull-Clark's output faces after `levels` levels of `base` and the number of output
 /// vertices, from the levels' topology alone.
-pub(crate) fn catmull_clark_faces(base: &HalfEdgeMesh, levels: usize) -> Option<(PolyMesh, usize)> {
-    let (_, last) = levels_of(base, levels, |_| Some(()), quad_child)?;
+pub(crate) fn catmull_clark_faces(
+    base: &HalfEdgeMesh,
+    levels: usize,
+    told: &mut Told<'_>,
+) -> Option<(PolyMesh, usize)> {
+    let (_, last) = levels_of(base, levels, |_| Some(()), quad_child, told)?;
     Some((quad_faces(&last), crate::refine::pqq::num_child_vertices(&last)))
 }
 
@@ -130,6 +145,7 @@ fn levels_of<'b, S>(
     levels: usize,
     step: impl Fn(&HalfEdgeMesh) -> Option<S>,
     child: impl Fn(&HalfEdgeMesh) -> HalfEdgeMesh,
+    told: &mut Told<'_>,
 ) -> Option<(Vec<S>, Cow<'b, HalfEdgeMesh>)> {
     let mut steps = Vec::with_capacity(levels);
     let mut mesh = Cow::Borrowed(base);
@@ -137,9 +153,21 @@ fn levels_of<'b, S>(
         steps.push(step(&mesh)?);
         if level + 1 < levels {
             mesh = Cow::Owned(child(&mesh));
+            if told(level + 1, &mesh).is_break() {
+                return None;
+            }
         }
     }
     (levels > 0).then_some((steps, mesh))
+}
+
+/// Told the mesh of each level made before the last (its number, from 1), so that a call can
+/// tell its progress as it goes; `Break` stops the making (the maker then gives `None`).
+pub(crate) type Told<'t> = dyn FnMut(usize, &HalfEdgeMesh) -> ControlFlow<()> + 't;
+
+/// A [`Told`] for makers with no one to tell.
+pub(crate) fn untold(_: usize, _: &HalfEdgeMesh) -> ControlFlow<()> {
+    ControlFlow::Continue(())
 }
 
 /// The levels before the last, from the padded control points, then the last into `out`.

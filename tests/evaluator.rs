@@ -707,6 +707,44 @@ fn subdivide_by_the_closed_forms_equals_subdivide() {
     }
 }
 
+/// `subdivide_closed_with_progress` tells the levels with the counts `subdivide` tells, each
+/// level before the last as the closed forms make its mesh, and a `Break` ends it with
+/// `Error::Cancelled`.
+#[test]
+fn the_closed_forms_tell_progress_as_subdivide_does() {
+    use std::ops::ControlFlow;
+    use subsurf::evaluator::subdivide_closed_with_progress;
+    use subsurf::scheme::{subdivide_mesh_borrowed_with_progress, Progress};
+    let quads = torus(7, 5, 1.0, 0.3);
+    let base = HalfEdgeMesh::from_poly(&quads).unwrap();
+    let color = [Attribute::vertex("color", 3, quads.positions.clone())];
+    let none = Tags::default();
+    let count = |p: Progress| [p.level, p.levels, p.faces, p.vertices];
+    for (limit, channels) in [(true, &[][..]), (false, &color[..])] {
+        let options = options(Scheme::CatmullClark, 3, limit, true);
+        let (mut got, mut want) = (Vec::new(), Vec::new());
+        let mut tell = |p| {
+            got.push(count(p));
+            ControlFlow::Continue(())
+        };
+        let closed = subdivide_closed_with_progress(&base, channels, &options, &none, &mut tell);
+        assert!(closed.unwrap().is_some(), "limit {limit}: the closed forms apply");
+        let mut tell = |p| {
+            want.push(count(p));
+            ControlFlow::Continue(())
+        };
+        subdivide_mesh_borrowed_with_progress(&base, channels, &options, &none, &mut tell).unwrap();
+        assert_eq!(got, want, "limit {limit}");
+        assert_eq!(got.len(), 3, "limit {limit}");
+        let mut stop = |p: Progress| match p.level {
+            2 => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        };
+        let stopped = subdivide_closed_with_progress(&base, channels, &options, &none, &mut stop);
+        assert!(matches!(stopped, Err(Error::Cancelled(_))), "limit {limit}");
+    }
+}
+
 /// Refined frames of a closed cage untagged (`Evaluator::step_vertices`: every level by
 /// Catmull and Clark's or Loop's smooth rules each frame, the last written to the output) give
 /// what the table's own rows give and what `subdivide` gives, at levels 1 to 3 (Catmull-Clark's

@@ -15,7 +15,7 @@
 
 use crate::attributes::{self, Attribute};
 use crate::error::Error;
-use crate::evaluator::subdivide_closed;
+use crate::evaluator::{subdivide_closed, subdivide_closed_with_progress};
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::scheme::{self, Boundary, FVarLinear, Options, Progress, Refined, Scheme};
@@ -115,11 +115,14 @@ pub fn subdivide(
     let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
     let attributes = read_attributes(mesh).map_err(js_error)?;
-    if on_progress.is_none() {
-        let closed = subdivide_closed(&base, &attributes, &parsed, &tags).map_err(js_error)?;
-        if let Some(refined) = closed {
-            return Ok(refined_object(&refined, lent)?);
+    let closed = with_progress(on_progress.clone(), |progress| match progress {
+        None => subdivide_closed(&base, &attributes, &parsed, &tags),
+        Some(progress) => {
+            subdivide_closed_with_progress(&base, &attributes, &parsed, &tags, progress)
         }
+    })?;
+    if let Some(refined) = closed {
+        return Ok(refined_object(&refined, lent)?);
     }
     let refined = with_progress(on_progress, |progress| match progress {
         None => scheme::subdivide_mesh_refined_with(base, &attributes, &parsed, &tags),
@@ -137,10 +140,10 @@ pub fn subdivide(
 /// Runs `call` with a progress callback that calls the JS function `on_progress`, if any. What
 /// the function throws stops the call (`ControlFlow::Break`) and is thrown as it is, so that
 /// the caller sees its own exception rather than a message of ours.
-fn with_progress<'a>(
+fn with_progress<T>(
     on_progress: Option<Function>,
-    call: impl FnOnce(Option<&mut scheme::OnProgress<'_>>) -> Result<Refined<'a>, crate::error::Error>,
-) -> Result<Refined<'a>, JsValue> {
+    call: impl FnOnce(Option<&mut scheme::OnProgress<'_>>) -> Result<T, crate::error::Error>,
+) -> Result<T, JsValue> {
     let Some(function) = on_progress else {
         return call(None).map_err(|e| js_error(e).into());
     };
@@ -219,11 +222,14 @@ impl BaseMesh {
         let on_progress = read_on_progress(options).map_err(js_error)?;
         let lent = Lent::read(into).map_err(js_error)?;
         let (mesh, attributes) = (&self.mesh, &self.attributes);
-        if on_progress.is_none() {
-            let closed = subdivide_closed(mesh, attributes, &parsed, &tags).map_err(js_error)?;
-            if let Some(refined) = closed {
-                return Ok(refined_object(&refined, lent)?);
+        let closed = with_progress(on_progress.clone(), |progress| match progress {
+            None => subdivide_closed(mesh, attributes, &parsed, &tags),
+            Some(progress) => {
+                subdivide_closed_with_progress(mesh, attributes, &parsed, &tags, progress)
             }
+        })?;
+        if let Some(refined) = closed {
+            return Ok(refined_object(&refined, lent)?);
         }
         let refined = with_progress(on_progress, |progress| match progress {
             None => scheme::subdivide_mesh_borrowed_with(mesh, attributes, &parsed, &tags),

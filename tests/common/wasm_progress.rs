@@ -67,6 +67,13 @@ fn a_throwing_callback_stops_the_call_with_its_own_exception() {
     let base = BaseMesh::new(&cube()).unwrap();
     let error = base.subdivide(&options, &JsValue::UNDEFINED).unwrap_err();
     assert!(error.is_instance_of::<js_sys::RangeError>());
+    // With the limit, the closed cube's points come from the closed forms, which tell each
+    // level as they make it: the throw ends the call there too.
+    let log = Array::new();
+    let limit = [("levels", 3.into()), ("limit", true.into())];
+    let error = base.subdivide(&with_progress(&limit, &recorder(&log, 2)), &JsValue::UNDEFINED);
+    assert!(error.unwrap_err().is_instance_of::<js_sys::RangeError>());
+    assert_eq!(logged(&log), CUBE_LEVELS[..2].iter().map(|r| r.to_vec()).collect::<Vec<_>>());
     // The module and the mesh work on.
     assert_eq!(u32s(&ok(base.subdivide(&levels(2.0), &JsValue::UNDEFINED)), "faceSizes").len(), 96);
     assert_eq!(u32s(&ok(subdivide(&cube(), &levels(1.0))), "faceSizes").len(), 24);
