@@ -13,7 +13,7 @@ use crate::quad_rings::QuadRings;
 use crate::refined::Refined;
 use crate::regular_rings::{Previous, RegularRings, Step};
 use crate::scheme::{
-    build_level_stencils, build_stencils, check_call, level_tables_within, report,
+    build_level_stencils, build_stencils, check_call, level_tables_within, report, report_result,
     subdivide_mesh_borrowed_with, table_too_large, MadeElsewhere, OnProgress, Progress,
     StencilBuild,
 };
@@ -796,13 +796,7 @@ fn closed_call<'a>(
         let plain = Options { normals: false, ..options.clone() };
         subdivide_mesh_borrowed_with(base, attributes, &plain, tags)?
     };
-    let last = Progress {
-        level: levels,
-        levels,
-        faces: refined.num_faces(),
-        vertices: refined.positions().len() / 3,
-    };
-    report(progress, last)?;
+    report_result(progress, &refined, levels)?;
     Ok(Some(refined.with_given_normals(normals)))
 }
 

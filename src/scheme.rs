@@ -685,15 +685,19 @@ fn refine_levels<'a, 'f, V: Primvar>(
     let face_normals = options.normals && !stencil_build;
     let refined = if face_normals { refined.with_face_normals() } else { refined };
     if levels > 0 {
-        let done = Progress {
-            level: levels,
-            levels,
-            faces: refined.num_faces(),
-            vertices: refined.positions().len() / 3,
-        };
-        report(progress, done)?;
+        report_result(progress, &refined, levels)?;
     }
     Ok(refined)
+}
+
+/// Tells `progress`, if any, that the last of `levels` levels is done, with `refined`'s counts.
+pub(crate) fn report_result(
+    progress: Option<&mut OnProgress<'_>>,
+    refined: &Refined<'_>,
+    levels: usize,
+) -> Result<()> {
+    let (faces, vertices) = (refined.num_faces(), refined.positions().len() / 3);
+    report(progress, Progress { level: levels, levels, faces, vertices })
 }
 
 /// Tells `progress`, if any, where the call is; a `Break` becomes [`Error::Cancelled`].
