@@ -262,11 +262,9 @@ impl Evaluator {
     ) -> Result<Option<Self>> {
         let base = &**held;
         crate::predict::check_guards(base, options)?;
-        let made = closed_forms(base, options, &mut untold);
-        let Some((closed, faces)) = made else { return Ok(None) };
-        if closed.bytes() > options.max_bytes {
+        let Some((closed, faces)) = closed_forms(base, options, &mut untold) else {
             return Ok(None);
-        }
+        };
         let channels = if attributes.is_empty() {
             Vec::new()
         } else {
@@ -773,9 +771,6 @@ fn closed_call<'a>(
     if let Some(stop) = stopped {
         return Err(stop);
     }
-    let made = made.filter(|(closed, _)| {
-        closed.form().rest().is_empty() && closed.bytes() <= options.max_bytes
-    });
     // Found out after levels were told (seldom: a fan that does not close shows at level 0),
     // the masks' call tells them again from the first.
     let Some((closed, faces)) = made else { return Ok(None) };
@@ -802,7 +797,8 @@ fn closed_call<'a>(
 
 /// The closed form that gives every output point of `options` on `base` from the levels'
 /// smooth rules, with the output faces (see [`Evaluator::from_levels`]); `None` where none
-/// applies. Tags and attributes are the caller's to rule out.
+/// applies or it would pass `options.max_bytes`. Tags and attributes are the caller's to rule
+/// out.
 fn closed_forms(
     base: &HalfEdgeMesh,
     options: &Options,
@@ -810,7 +806,7 @@ fn closed_forms(
 ) -> Option<(Closed, PolyMesh)> {
     let levels = options.levels();
     let all = |scheme| !options.schemes.is_empty() && options.schemes.iter().all(|&s| s == scheme);
-    if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
+    let made = if options.limit && all(Scheme::CatmullClark) && crate::patches::all_regular(base) {
         // Every point on a patch (a closed all-quad cage of valence 4: a torus).
         catmull_clark_faces(base, levels, told).and_then(|(faces, outputs)| {
             let patches = RegularPatches::new(base, &faces, u32::try_from(levels).ok()?, outputs)?;
@@ -833,7 +829,8 @@ fn closed_forms(
         })
     } else {
         None
-    }
+    };
+    made.filter(|(closed, _)| closed.bytes() <= options.max_bytes)
 }
 
 /// Loop's limit on a closed cage when its closed forms give every point, with the output

@@ -115,13 +115,7 @@ pub fn subdivide(
     let lent = Lent::read(into).map_err(js_error)?;
     let base = read_half_edge_mesh(mesh).map_err(js_error)?;
     let attributes = read_attributes(mesh).map_err(js_error)?;
-    let closed = with_progress(on_progress.clone(), |progress| match progress {
-        None => subdivide_closed(&base, &attributes, &parsed, &tags),
-        Some(progress) => {
-            subdivide_closed_with_progress(&base, &attributes, &parsed, &tags, progress)
-        }
-    })?;
-    if let Some(refined) = closed {
+    if let Some(refined) = closed(&base, &attributes, &parsed, &tags, on_progress.clone())? {
         return Ok(refined_object(&refined, lent)?);
     }
     let refined = with_progress(on_progress, |progress| match progress {
@@ -135,6 +129,21 @@ pub fn subdivide(
         ),
     })?;
     Ok(refined_object(&refined, lent)?)
+}
+
+/// The call by the closed forms where they give every point (`subdivide_closed`), telling
+/// `on_progress` as the masks' call would; `None` leaves the call to the masks.
+fn closed<'a>(
+    base: &'a HalfEdgeMesh,
+    attributes: &[Attribute],
+    options: &Options,
+    tags: &crate::tags::Tags,
+    on_progress: Option<Function>,
+) -> Result<Option<Refined<'a>>, JsValue> {
+    with_progress(on_progress, |progress| match progress {
+        None => subdivide_closed(base, attributes, options, tags),
+        Some(progress) => subdivide_closed_with_progress(base, attributes, options, tags, progress),
+    })
 }
 
 /// Runs `call` with a progress callback that calls the JS function `on_progress`, if any. What
@@ -222,13 +231,7 @@ impl BaseMesh {
         let on_progress = read_on_progress(options).map_err(js_error)?;
         let lent = Lent::read(into).map_err(js_error)?;
         let (mesh, attributes) = (&self.mesh, &self.attributes);
-        let closed = with_progress(on_progress.clone(), |progress| match progress {
-            None => subdivide_closed(mesh, attributes, &parsed, &tags),
-            Some(progress) => {
-                subdivide_closed_with_progress(mesh, attributes, &parsed, &tags, progress)
-            }
-        })?;
-        if let Some(refined) = closed {
+        if let Some(refined) = closed(mesh, attributes, &parsed, &tags, on_progress.clone())? {
             return Ok(refined_object(&refined, lent)?);
         }
         let refined = with_progress(on_progress, |progress| match progress {
