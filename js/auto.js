@@ -8,8 +8,13 @@
 // explicit entry is 'subsurf/init' (subsurf.js).
 import init from './subsurf.js';
 import './freed.js';
+import { explained } from './support.js';
 
-await init();
+try {
+  await init();
+} catch (error) {
+  throw explained(error);
+}
 
 export * from './subsurf.js';
 export { default } from './subsurf.js';

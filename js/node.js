@@ -1,8 +1,13 @@
 import { readFileSync } from 'node:fs';
 import { initSync } from './subsurf.js';
 import './freed.js';
+import { explained } from './support.js';
 
-initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
+try {
+  initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
+} catch (error) {
+  throw explained(error);
+}
 
 export * from './subsurf.js';
 // Code written for browsers (`import init from 'subsurf'; await init();`) runs unchanged: the

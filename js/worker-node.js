@@ -1,12 +1,17 @@
 // subsurf/worker in Node: the same API as worker.js (see worker.d.ts), on node:worker_threads.
 import { readFile } from 'node:fs/promises';
 import { Worker } from 'node:worker_threads';
+import { explained } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 async function compile(wasm) {
-  const source = await wasm;
-  if (source instanceof WebAssembly.Module) return source;
-  return WebAssembly.compile(await readFile(source ?? new URL('./subsurf_bg.wasm', import.meta.url)));
+  try {
+    const source = await wasm;
+    if (source instanceof WebAssembly.Module) return source;
+    return await WebAssembly.compile(await readFile(source ?? new URL('./subsurf_bg.wasm', import.meta.url)));
+  } catch (error) {
+    throw explained(error);
+  }
 }
 
 /** A thread for WorkerClient from a started worker_threads Worker. */

@@ -4,10 +4,19 @@
 // Both URLs are written as `new URL('./file', import.meta.url)`, literally, inside the call that
 // uses them: Vite and webpack 5 recognise that pattern with no configuration, bundling the
 // worker script as a worker entry and the .wasm as an asset.
+import { explained } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 /** The compiled subsurf wasm from `wasm` (a Module, a promise of one, or where to fetch it). */
 async function compile(wasm) {
+  try {
+    return await load(wasm);
+  } catch (error) {
+    throw explained(error);
+  }
+}
+
+async function load(wasm) {
   const source = await wasm;
   if (source instanceof WebAssembly.Module) return source;
   const url = source ?? new URL('./subsurf_bg.wasm', import.meta.url);

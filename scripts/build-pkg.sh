@@ -34,7 +34,8 @@ mv "$BG.opt" "$BG"
 AFTER=$(size "$BG")
 
 # The package's own files are checked-in sources in js/: init.js (the './init' entry: the glue
-# with freed.js, which makes calls on freed objects say so), auto.js and three-auto.js (the browser
+# with freed.js, which makes calls on freed objects say so, and support.js, which makes a failed
+# load say so where the engine lacks WebAssembly or its SIMD), auto.js and three-auto.js (the browser
 # and bundler entries of '.' and './three': a top-level `await init()`, so no init call is
 # needed), node.js (Node has no fetch() for file:
 # URLs, so the plain `await init()` of a --target web build cannot find its .wasm there; this
@@ -46,7 +47,7 @@ AFTER=$(size "$BG")
 # files (subsurf/worker: subdivide in a Web Worker or a worker_threads thread; worker.js and
 # worker-node.js call, worker-thread.js answers, worker-script*.js are the threads' scripts),
 # and the package.json and README.md templates, which get the crate's version and description here.
-cp js/auto.js js/init.js js/freed.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts js/geometry.js "$OUT/"
+cp js/auto.js js/init.js js/freed.js js/support.js js/three-auto.js js/node.js js/node.d.ts js/webgpu.js js/webgpu.d.ts js/three.js js/three-node.js js/three.d.ts js/geometry.js "$OUT/"
 cp js/worker.js js/worker-node.js js/worker.d.ts js/worker-client.js js/worker-thread.js js/worker-thread.d.ts \
   js/worker-script.js js/worker-script-node.js "$OUT/"
 

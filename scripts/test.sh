@@ -7,7 +7,8 @@
 # doc, natively and for wasm32, warnings as errors: a broken link fails), native cargo test
 # (profile test-release: release without LTO, see Cargo.toml),
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, the package as users install it (consumers: npm pack, installed from the
+# the built package, what its entries say on an engine without WebAssembly SIMD (support: Node
+# and headless Chromium, their WebAssembly changed to refuse it), the package as users install it (consumers: npm pack, installed from the
 # tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
 # Chromium), subsurf/three with real three.js in Node (tests/js/three.mjs, with the
 # pinned three and again with 0.150.1, the oldest of its peer range), glTF files of
@@ -115,6 +116,7 @@ else
 fi
 if run build-pkg scripts/build-pkg.sh; then
   run pkg-smoke node tests/js/pkg_smoke.mjs
+  run support node tests/js/support.mjs
   run consumers node tests/js/consumers.mjs
   run three node tests/js/three.mjs
   run gltf node tests/js/gltf.mjs
