@@ -1,10 +1,12 @@
 import { readFileSync } from 'node:fs';
 import { initSync } from './subsurf.js';
 import './freed.js';
-import { explained } from './support.js';
+import { explained, hasSimd } from './support.js';
 
 try {
-  initSync({ module: readFileSync(new URL('./subsurf_bg.wasm', import.meta.url)) });
+  // Without WebAssembly SIMD, the same library built without it (support.js).
+  const file = hasSimd() ? './subsurf_bg.wasm' : './subsurf_nosimd.wasm';
+  initSync({ module: readFileSync(new URL(file, import.meta.url)) });
 } catch (error) {
   throw explained(error);
 }

@@ -1,8 +1,9 @@
-// What subsurf needs of the JavaScript engine, said plainly when it is missing. The module is
-// built with WebAssembly SIMD (simd128): an engine without it (Safari before 16.4, as on
-// iPhones that stay on iOS 15) fails the compilation with a message about an opcode, which
-// tells a user nothing. The entries that load the module pass their error through
-// `explained`, so the failure names what is missing and which engines have it.
+// What subsurf needs of the JavaScript engine. The module (subsurf_bg.wasm) is built with
+// WebAssembly SIMD (simd128); for engines without it (Safari before 16.4, the last Safari of
+// some iPhones among them) the package has the same library built without SIMD
+// (subsurf_nosimd.wasm, same glue, slower), which the entries load where `hasSimd()` says no.
+// Where loading still fails, the entries pass the error through `explained`, so that it says
+// what the engine lacks instead of naming an opcode.
 
 /** The smallest module that uses a v128: `(func (result v128) (v128.const i32x4 0 0 0 0))`. */
 const SIMD_PROBE = new Uint8Array([
@@ -12,24 +13,31 @@ const SIMD_PROBE = new Uint8Array([
   10, 22, 1, 20, 0, 253, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 11, // v128.const 0
 ]);
 
-const ENGINES = 'Chrome 91, Edge 91, Firefox 89, Safari 16.4, Node 16.4 or later';
+/** The engines that run subsurf_bg.wasm, and those that run subsurf_nosimd.wasm. */
+const SIMD_ENGINES = 'Chrome 91, Edge 91, Firefox 89, Safari 16.4, Node 16.4 or later';
+const ENGINES = 'Chrome 75, Edge 79, Firefox 79, Safari 15 or later';
 
-/** What this engine lacks of what subsurf needs, or null when it has it all. */
-export function missingSupport() {
-  if (typeof WebAssembly !== 'object' || typeof WebAssembly.validate !== 'function') {
-    return `subsurf needs WebAssembly, which this JavaScript environment does not have: use ${ENGINES}`;
-  }
-  if (!WebAssembly.validate(SIMD_PROBE)) {
-    return `subsurf needs WebAssembly SIMD (simd128), which this engine does not run: use ${ENGINES}`;
-  }
-  return null;
+function hasWebAssembly() {
+  return typeof WebAssembly === 'object' && typeof WebAssembly.validate === 'function';
+}
+
+/** Whether this engine runs WebAssembly SIMD: which of the package's two modules it loads. */
+export function hasSimd() {
+  return hasWebAssembly() && WebAssembly.validate(SIMD_PROBE);
 }
 
 /**
- * The error to throw for `error`, raised while loading subsurf's module: one that says what
- * the engine lacks (with `error` as its cause) when it lacks something, else `error` itself.
+ * The error to throw for `error`, raised while loading subsurf's module: one that says what the
+ * engine lacks (with `error` as its cause) when it lacks something, else `error` itself.
  */
 export function explained(error) {
-  const missing = missingSupport();
-  return missing ? new Error(missing, { cause: error }) : error;
+  if (!hasWebAssembly()) {
+    return new Error(`subsurf needs WebAssembly, which this JavaScript environment does not have: use ${ENGINES}`, { cause: error });
+  }
+  if (!hasSimd()) {
+    return new Error('subsurf could not load its module on this engine, which does not run WebAssembly SIMD. ' +
+      'Such engines need subsurf_nosimd.wasm (the entries load it by themselves; pass its URL or bytes where you ' +
+      `give init() or initSync() a module), which runs on ${ENGINES}; subsurf_bg.wasm needs ${SIMD_ENGINES}`, { cause: error });
+  }
+  return error;
 }

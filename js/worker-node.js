@@ -1,14 +1,16 @@
 // subsurf/worker in Node: the same API as worker.js (see worker.d.ts), on node:worker_threads.
 import { readFile } from 'node:fs/promises';
 import { Worker } from 'node:worker_threads';
-import { explained } from './support.js';
+import { explained, hasSimd } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 async function compile(wasm) {
   try {
     const source = await wasm;
     if (source instanceof WebAssembly.Module) return source;
-    return await WebAssembly.compile(await readFile(source ?? new URL('./subsurf_bg.wasm', import.meta.url)));
+    // Without WebAssembly SIMD, the same library built without it (support.js).
+    const file = hasSimd() ? './subsurf_bg.wasm' : './subsurf_nosimd.wasm';
+    return await WebAssembly.compile(await readFile(source ?? new URL(file, import.meta.url)));
   } catch (error) {
     throw explained(error);
   }

@@ -33,9 +33,34 @@ echo "== build-pkg: wasm-opt -O3 -ocimfs 10 ($("$WASM_OPT" --version))"
 mv "$BG.opt" "$BG"
 AFTER=$(size "$BG")
 
+# The same library without SIMD, for engines that do not run it (Safari 15, the last on some
+# iPhones): the loaders take it where js/support.js's probe fails. Same glue: wasm-bindgen's
+# output for it must equal the SIMD build's, byte for byte, or one glue could not load both.
+# Its own target directory keeps both builds incremental; the env key overrides the
+# target.wasm32-unknown-unknown.rustflags of .cargo/config.toml (+simd128).
+SCALAR="$OUT/${CRATE}_nosimd.wasm"
+SCALAR_TARGET="${CARGO_TARGET_DIR:-target}/nosimd"
+echo "== build-pkg: the same without simd128 (-> $SCALAR)"
+CARGO_TARGET_DIR="$SCALAR_TARGET" CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="-C target-feature=-simd128" \
+  cargo build --release --target wasm32-unknown-unknown --lib
+SCALAR_GLUE=$(mktemp -d)
+wasm-bindgen --target web --out-dir "$SCALAR_GLUE" "$SCALAR_TARGET/wasm32-unknown-unknown/release/$CRATE.wasm"
+if ! cmp -s "$SCALAR_GLUE/$CRATE.js" "$OUT/$CRATE.js"; then
+  echo "build-pkg: wasm-bindgen's glue for the build without SIMD differs from the SIMD build's; one glue cannot load both" >&2
+  exit 1
+fi
+"$WASM_OPT" -O3 -ocimfs 10 --strip-debug --strip-producers "$SCALAR_GLUE/${CRATE}_bg.wasm" -o "$SCALAR"
+# No v128 in it: its target_features section alone would not say (a validator trusts that).
+"$WASM_OPT" "$SCALAR" --print >"$SCALAR_GLUE/text.wat"
+if grep -q -E 'v128|[if](8x16|16x8|32x4|64x2)' "$SCALAR_GLUE/text.wat"; then
+  echo "build-pkg: $SCALAR uses SIMD instructions" >&2
+  exit 1
+fi
+rm -rf "$SCALAR_GLUE"
+
 # The package's own files are checked-in sources in js/: init.js (the './init' entry: the glue
-# with freed.js, which makes calls on freed objects say so, and support.js, which makes a failed
-# load say so where the engine lacks WebAssembly or its SIMD), auto.js and three-auto.js (the browser
+# with freed.js, which makes calls on freed objects say so, and support.js, which picks
+# subsurf_nosimd.wasm where the engine lacks SIMD and makes a failed load say why), auto.js and three-auto.js (the browser
 # and bundler entries of '.' and './three': a top-level `await init()`, so no init call is
 # needed), node.js (Node has no fetch() for file:
 # URLs, so the plain `await init()` of a --target web build cannot find its .wasm there; this

@@ -7,8 +7,9 @@
 # doc, natively and for wasm32, warnings as errors: a broken link fails), native cargo test
 # (profile test-release: release without LTO, see Cargo.toml),
 # wasm-bindgen tests in Node and headless Chromium, the npm package build, a Node smoke test of
-# the built package, what its entries say on an engine without WebAssembly SIMD (support: Node
-# and headless Chromium, their WebAssembly changed to refuse it), the package as users install it (consumers: npm pack, installed from the
+# the built package, its entries on an engine without WebAssembly SIMD (support: Node and
+# headless Chromium, their WebAssembly changed to refuse it: subsurf_nosimd.wasm loaded and
+# giving the SIMD build's results, clear errors), the package as users install it (consumers: npm pack, installed from the
 # tarball into fresh Node, Vite, webpack 5 and plain-page projects, the pages run in headless
 # Chromium), subsurf/three with real three.js in Node (tests/js/three.mjs, with the
 # pinned three and again with 0.150.1, the oldest of its peer range), glTF files of

@@ -22,7 +22,7 @@
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
 import { createServer } from 'node:http';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -221,12 +221,31 @@ async function viteDev(dir) {
   }
 }
 
+/**
+ * Asserts that a bundler's output `dir` has both of the package's modules as assets (found by
+ * their sizes): the SIMD one, and subsurf_nosimd.wasm, which an engine without SIMD loads.
+ */
+function bothModules(dir) {
+  const sizes = new Set();
+  const walk = (d) => {
+    for (const entry of readdirSync(d, { withFileTypes: true })) {
+      const path = join(d, entry.name);
+      if (entry.isDirectory()) walk(path);
+      else if (entry.name.endsWith('.wasm')) sizes.add(statSync(path).size);
+    }
+  };
+  walk(dir);
+  for (const file of ['subsurf_bg.wasm', 'subsurf_nosimd.wasm']) {
+    assert.ok(sizes.has(statSync(join(pkgDir, file)).size), `${dir} has ${file} as an asset (wasm sizes there: ${[...sizes]})`);
+  }
+}
+
 let tarball;
 await part('npm pack', () => {
   const [info] = JSON.parse(run('npm', ['pack', pkgDir, '--pack-destination', scratch, '--json', '--loglevel=error'], scratch));
   tarball = join(scratch, info.filename);
   const files = info.files.map((f) => f.path);
-  for (const file of ['auto.js', 'three-auto.js', 'subsurf_bg.wasm', 'node.js', 'package.json', 'worker.js', 'worker-node.js', 'worker-client.js',
+  for (const file of ['auto.js', 'three-auto.js', 'subsurf_bg.wasm', 'subsurf_nosimd.wasm', 'support.js', 'node.js', 'package.json', 'worker.js', 'worker-node.js', 'worker-client.js',
     'worker-thread.js', 'worker-script.js', 'worker-script-node.js', 'worker.d.ts', 'worker-thread.d.ts']) assert.ok(files.includes(file), `tarball has ${file}`);
 });
 
@@ -252,7 +271,10 @@ if (tarball) {
       mkdirSync(join(dir, 'src'));
       writeFileSync(join(dir, 'src', 'main.js'), APP);
     });
-    await part('vite: vite build', () => run(bin('vite'), ['build', '--logLevel', 'warn'], join(scratch, 'vite')));
+    await part('vite: vite build', () => {
+      run(bin('vite'), ['build', '--logLevel', 'warn'], join(scratch, 'vite'));
+      bothModules(join(scratch, 'vite', 'dist'));
+    });
     await part('vite: page in Chromium', () => openPage(join(scratch, 'vite', 'dist')));
     await part('vite: dev server (vite), page in Chromium', () => viteDev(join(scratch, 'vite')));
   }
@@ -266,6 +288,7 @@ if (tarball) {
     const dir = join(scratch, 'webpack');
     // The defaults: production mode, ./src/index.js to ./dist/main.js; the .wasm becomes an asset.
     run(bin('webpack'), ['--mode', 'production'], dir);
+    bothModules(join(dir, 'dist'));
     writeFileSync(join(dir, 'dist', 'index.html'), `<!doctype html><meta charset="utf-8"><title>subsurf in webpack</title>${REPORT_ERRORS}
 <pre id="out"></pre><script src="main.js"></script>\n`);
   });
