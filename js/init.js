@@ -4,21 +4,20 @@
 // loaders' failures said plainly where the engine lacks what subsurf needs (support.js).
 import './freed.js';
 import glueInit, { initSync as glueInitSync } from './subsurf.js';
-import { explained, hasSimd } from './support.js';
+import { explained, moduleUrl } from './support.js';
 
 export * from './subsurf.js';
 
 /**
- * The glue's `init`: loads and instantiates the module (see subsurf.d.ts). Given no module, an
- * engine without WebAssembly SIMD gets subsurf_nosimd.wasm instead of the glue's
- * subsurf_bg.wasm (support.js).
+ * The glue's `init`: loads and instantiates the module (see subsurf.d.ts). Given no module, it
+ * loads support.js's `moduleUrl()`: subsurf_nosimd.wasm on an engine without WebAssembly SIMD.
  */
 export default async function init(...args) {
   const given = args[0] !== null && typeof args[0] === 'object' && Object.getPrototypeOf(args[0]) === Object.prototype
     ? args[0].module_or_path
     : args[0];
-  if (given === undefined && !hasSimd()) {
-    args = [{ ...args[0], module_or_path: new URL('./subsurf_nosimd.wasm', import.meta.url) }];
+  if (given === undefined) {
+    args = [{ ...args[0], module_or_path: moduleUrl() }];
   }
   try {
     return await glueInit(...args);

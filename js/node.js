@@ -1,12 +1,10 @@
 import { readFileSync } from 'node:fs';
 import { initSync } from './subsurf.js';
 import './freed.js';
-import { explained, hasSimd } from './support.js';
+import { explained, moduleUrl } from './support.js';
 
 try {
-  // Without WebAssembly SIMD, the same library built without it (support.js).
-  const file = hasSimd() ? './subsurf_bg.wasm' : './subsurf_nosimd.wasm';
-  initSync({ module: readFileSync(new URL(file, import.meta.url)) });
+  initSync({ module: readFileSync(moduleUrl()) });
 } catch (error) {
   throw explained(error);
 }

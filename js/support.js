@@ -1,7 +1,8 @@
 // What subsurf needs of the JavaScript engine. The module (subsurf_bg.wasm) is built with
 // WebAssembly SIMD (simd128); for engines without it (Safari before 16.4, the last Safari of
 // some iPhones among them) the package has the same library built without SIMD
-// (subsurf_nosimd.wasm, same glue, slower), which the entries load where `hasSimd()` says no.
+// (subsurf_nosimd.wasm, same glue, slower), which the entries load where `hasSimd()` says no
+// (`moduleUrl()`).
 // Where loading still fails, the entries pass the error through `explained`, so that it says
 // what the engine lacks instead of naming an opcode.
 
@@ -24,6 +25,15 @@ function hasWebAssembly() {
 /** Whether this engine runs WebAssembly SIMD: which of the package's two modules it loads. */
 export function hasSimd() {
   return hasWebAssembly() && WebAssembly.validate(SIMD_PROBE);
+}
+
+/**
+ * The URL of the module this engine loads: subsurf_bg.wasm, or subsurf_nosimd.wasm without
+ * SIMD. Each URL is written literally, `new URL('./file', import.meta.url)`, so that Vite and
+ * webpack emit both files as assets.
+ */
+export function moduleUrl() {
+  return hasSimd() ? new URL('./subsurf_bg.wasm', import.meta.url) : new URL('./subsurf_nosimd.wasm', import.meta.url);
 }
 
 /**

@@ -1,16 +1,14 @@
 // subsurf/worker in Node: the same API as worker.js (see worker.d.ts), on node:worker_threads.
 import { readFile } from 'node:fs/promises';
 import { Worker } from 'node:worker_threads';
-import { explained, hasSimd } from './support.js';
+import { explained, moduleUrl } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 async function compile(wasm) {
   try {
     const source = await wasm;
     if (source instanceof WebAssembly.Module) return source;
-    // Without WebAssembly SIMD, the same library built without it (support.js).
-    const file = hasSimd() ? './subsurf_bg.wasm' : './subsurf_nosimd.wasm';
-    return await WebAssembly.compile(await readFile(source ?? new URL(file, import.meta.url)));
+    return await WebAssembly.compile(await readFile(source ?? moduleUrl()));
   } catch (error) {
     throw explained(error);
   }

@@ -4,7 +4,7 @@
 // Both URLs are written as `new URL('./file', import.meta.url)`, literally, inside the call that
 // uses them: Vite and webpack 5 recognise that pattern with no configuration, bundling the
 // worker script as a worker entry and the .wasm as an asset.
-import { explained, hasSimd } from './support.js';
+import { explained, moduleUrl } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 /** The compiled subsurf wasm from `wasm` (a Module, a promise of one, or where to fetch it). */
@@ -19,8 +19,7 @@ async function compile(wasm) {
 async function load(wasm) {
   const source = await wasm;
   if (source instanceof WebAssembly.Module) return source;
-  // Without WebAssembly SIMD, the same library built without it (support.js).
-  const url = source ?? (hasSimd() ? new URL('./subsurf_bg.wasm', import.meta.url) : new URL('./subsurf_nosimd.wasm', import.meta.url));
+  const url = source ?? moduleUrl();
   const response = await fetch(url);
   if (!response.ok) {
     throw new Error(`subsurf/worker: could not load the wasm from ${url}: HTTP ${response.status}; pass createWorker({ wasm }) the URL where subsurf_bg.wasm is served`);

@@ -740,7 +740,9 @@ pub fn subdivide_closed_with_progress<'a>(
     closed_call(base, attributes, options, tags, Some(progress))
 }
 
-fn closed_call<'a>(
+/// [`subdivide_closed`], with `progress` told when given (the bindings pass theirs as an
+/// `Option`).
+pub(crate) fn closed_call<'a>(
     base: &'a HalfEdgeMesh,
     attributes: &[Attribute],
     options: &Options,
@@ -762,10 +764,13 @@ fn closed_call<'a>(
     let mut stopped = None;
     let mut told = |level, mesh: &HalfEdgeMesh| {
         let (faces, vertices) = (mesh.num_cells(), mesh.num_vertices());
-        let done = report(progress.as_deref_mut(), Progress { level, levels, faces, vertices });
-        let flow = if done.is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) };
-        stopped = done.err();
-        flow
+        match report(progress.as_deref_mut(), Progress { level, levels, faces, vertices }) {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(stop) => {
+                stopped = Some(stop);
+                ControlFlow::Break(())
+            }
+        }
     };
     let made = closed_forms(base, options, &mut told);
     if let Some(stop) = stopped {

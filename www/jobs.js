@@ -5,16 +5,16 @@
 // superseded, not queued: its call is aborted, which terminates that worker (the only way to
 // stop a wasm call in progress) and starts a fresh one from the WebAssembly.Module the page
 // compiled, which takes milliseconds. A superseded job's handlers are never called again.
-import { hasSimd } from './pkg/support.js';
+import { moduleUrl } from './pkg/support.js';
 import { createWorker } from './pkg/worker.js';
 
 const spawn = () => new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
 
 /**
  * Compiles the subsurf wasm once; the Module is shared by the workers and the page's animation.
- * A browser without WebAssembly SIMD gets the package's build without it.
+ * A browser without WebAssembly SIMD gets the package's build without it (`moduleUrl()`).
  */
-export async function compileSubsurf(url = new URL(hasSimd() ? './pkg/subsurf_bg.wasm' : './pkg/subsurf_nosimd.wasm', import.meta.url)) {
+export async function compileSubsurf(url = moduleUrl()) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`could not load ${url.pathname}: HTTP ${response.status}`);
   // compileStreaming needs the application/wasm content type; fall back to bytes otherwise.

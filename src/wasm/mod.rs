@@ -15,7 +15,7 @@
 
 use crate::attributes::{self, Attribute};
 use crate::error::Error;
-use crate::evaluator::{subdivide_closed, subdivide_closed_with_progress};
+use crate::evaluator::closed_call;
 use crate::io;
 use crate::mesh::{HalfEdgeMesh, PolyMesh};
 use crate::scheme::{self, Boundary, FVarLinear, Options, Progress, Refined, Scheme};
@@ -131,8 +131,8 @@ pub fn subdivide(
     Ok(refined_object(&refined, lent)?)
 }
 
-/// The call by the closed forms where they give every point (`subdivide_closed`), telling
-/// `on_progress` as the masks' call would; `None` leaves the call to the masks.
+/// The call by the closed forms where they give every point (`evaluator::subdivide_closed`),
+/// telling `on_progress` as the masks' call would; `None` leaves the call to the masks.
 fn closed<'a>(
     base: &'a HalfEdgeMesh,
     attributes: &[Attribute],
@@ -140,10 +140,7 @@ fn closed<'a>(
     tags: &crate::tags::Tags,
     on_progress: Option<Function>,
 ) -> Result<Option<Refined<'a>>, JsValue> {
-    with_progress(on_progress, |progress| match progress {
-        None => subdivide_closed(base, attributes, options, tags),
-        Some(progress) => subdivide_closed_with_progress(base, attributes, options, tags, progress),
-    })
+    with_progress(on_progress, |progress| closed_call(base, attributes, options, tags, progress))
 }
 
 /// Runs `call` with a progress callback that calls the JS function `on_progress`, if any. What

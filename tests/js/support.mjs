@@ -39,11 +39,12 @@ const CASES = [
   ['icosahedron', { scheme: 'loop', levels: 2, limit: true, normals: true }],
   ['torus', { scheme: 'catmull-clark', levels: 1 }],
 ];
-const results = (S) => CASES.map(([name, options]) => {
-  const r = S.subdivide(S.shape(name), options);
-  return { name, positions: [...r.positions], normals: r.normals ? [...r.normals] : null, indices: [...r.indices],
-    uv: r.attributes.uv ? [...r.attributes.uv.array] : null, uvIndices: r.attributes.uv?.indices ? [...r.attributes.uv.indices] : null };
-});
+/** A result's arrays as plain lists, to pass back as JSON. */
+const plain = (name, r) => ({ name, positions: [...r.positions], normals: r.normals ? [...r.normals] : null, indices: [...r.indices],
+  uv: r.attributes.uv ? [...r.attributes.uv.array] : null, uvIndices: r.attributes.uv?.indices ? [...r.attributes.uv.indices] : null });
+const results = (S) => CASES.map(([name, options]) => plain(name, S.subdivide(S.shape(name), options)));
+/** The same through subsurf/worker's \`worker\`, with \`shape\` from a loaded subsurf. */
+const workerResults = (worker, shape) => Promise.all(CASES.map(async ([name, options]) => plain(name, await worker.subdivide(shape(name), options))));
 `;
 const { subdivide, shape } = await import(pathToFileURL(join(pkg, 'node.js')).href);
 const expected = new Function('S', `${CASES}; return results(S);`)({ subdivide, shape });
@@ -129,13 +130,10 @@ for (const entry of ['initSync', 'init']) {
 check('without SIMD, initSync given subsurf_nosimd.wasm subdivides as with SIMD', same(explicit.results) === '', same(explicit.results));
 
 const worker = run(noSimd([simdSize]), `
+const { shape } = await import(pkg + '/node.js');
 const { createWorker } = await import(pkg + '/worker-node.js');
 const worker = createWorker();
-try { out.results = await Promise.all(CASES.map(async ([name, options]) => {
-  const r = await worker.subdivide(${'(await import(pkg + "/node.js"))'}.shape(name), options);
-  return { name, positions: [...r.positions], normals: r.normals ? [...r.normals] : null, indices: [...r.indices],
-    uv: r.attributes.uv ? [...r.attributes.uv.array] : null, uvIndices: r.attributes.uv?.indices ? [...r.attributes.uv.indices] : null };
-})); } catch (e) { out.results = describe(e); }
+try { out.results = await workerResults(worker, shape); } catch (e) { out.results = describe(e); }
 worker.terminate();
 `);
 check('without SIMD, subsurf/worker in Node takes subsurf_nosimd.wasm and subdivides as with SIMD', same(worker.results) === '', same(worker.results));
@@ -179,11 +177,7 @@ try {
     const S = await import('/pkg/init.js'); await S.default();
     const { createWorker } = await import('/pkg/worker.js');
     const worker = createWorker();
-    try { out.results = await Promise.all(CASES.map(async ([name, options]) => {
-      const r = await worker.subdivide(S.shape(name), options);
-      return { name, positions: [...r.positions], normals: r.normals ? [...r.normals] : null, indices: [...r.indices],
-        uv: r.attributes.uv ? [...r.attributes.uv.array] : null, uvIndices: r.attributes.uv?.indices ? [...r.attributes.uv.indices] : null };
-    })); } catch (e) { out.results = describe(e); }
+    try { out.results = await workerResults(worker, S.shape); } catch (e) { out.results = describe(e); }
     worker.terminate();`);
   check('in Chromium without SIMD, subsurf/worker takes subsurf_nosimd.wasm and subdivides as with SIMD', same(onThread.results) === '', same(onThread.results));
 } finally {
