@@ -72,11 +72,19 @@ using namespace OpenSubdiv;
 
 namespace {
 
-// A position in double precision, as PrimvarRefiner's interface wants it (weights are double too).
+// The precision of the positions and of PrimvarRefiner's weights: double for the fixtures;
+// built with -DOSD_REAL=float (tools/osd/build.sh FLOAT=1) to see what OpenSubdiv's float path
+// gives, as a renderer would run it.
+#ifndef OSD_REAL
+#define OSD_REAL double
+#endif
+using Real = OSD_REAL;
+
+// A position, as PrimvarRefiner's interface wants it.
 struct Point3 {
-    double p[3];
-    void Clear(void * = nullptr) { p[0] = p[1] = p[2] = 0.0; }
-    void AddWithWeight(Point3 const & src, double weight) {
+    Real p[3];
+    void Clear(void * = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(Point3 const & src, Real weight) {
         p[0] += weight * src.p[0];
         p[1] += weight * src.p[1];
         p[2] += weight * src.p[2];
@@ -431,7 +439,7 @@ int main(int argc, char ** argv) {
         perLevel[0].resize(numVertices);
         for (int v = 0; v < numVertices; ++v)
             for (int k = 0; k < 3; ++k) perLevel[0][v].p[k] = mesh.positions[3 * v + k];
-        Far::PrimvarRefinerReal<double> primvar(*refiner);  // double weights too
+        Far::PrimvarRefinerReal<Real> primvar(*refiner);  // the weights in that precision too
         for (int level = 1; level <= levels; ++level) {
             perLevel[level].resize(refiner->GetLevel(level).GetNumVertices());
             Point3 const * src = perLevel[level - 1].data();
@@ -489,7 +497,7 @@ int main(int argc, char ** argv) {
         limitPoints.resize(n);
         tan1.resize(n);
         tan2.resize(n);
-        Far::PrimvarRefinerReal<double> primvar(*refiner);
+        Far::PrimvarRefinerReal<Real> primvar(*refiner);
         primvar.Limit(perLevel[levels].data(), limitPoints, tan1, tan2);
         if (fvar) {
             // LimitFaceVarying must not read what it writes: a separate destination.
@@ -513,8 +521,8 @@ int main(int argc, char ** argv) {
         for (Point3 const & p : points)
             std::fprintf(out, limit ? "v %.9g %.9g %.9g\n" : "v %.17g %.17g %.17g\n", p.p[0], p.p[1], p.p[2]);
     for (size_t v = 0; !noNormals && v < tan1.size(); ++v) {
-        double const * a = tan1[v].p;
-        double const * b = tan2[v].p;
+        Real const * a = tan1[v].p;
+        Real const * b = tan2[v].p;
         double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
         double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
