@@ -133,7 +133,7 @@ impl<'a> Refined<'a> {
                 Form::Poly(poly) => Cow::Borrowed(&poly.indices[..]),
                 Form::Quads { parent, .. } => Cow::Owned(pqq::child_face_indices(parent)),
             };
-            list_indices(&self.seam_corners, &mut attributes, &faces);
+            list_indices(&self.seam_corners, &mut attributes, faces);
             attributes
         })
     }
@@ -150,8 +150,16 @@ impl<'a> Refined<'a> {
     /// The flat arrays and the attribute channels.
     pub fn into_parts(self) -> (PolyMesh, Vec<Attribute>) {
         let Refined { form, mut attributes, seam_corners, .. } = self;
-        let poly = Refined::new(form, Channels::default()).into_poly();
-        list_indices(&seam_corners, &mut attributes, &poly.indices);
+        let poly = match form {
+            Form::Quads { positions, parent } if !seam_corners.is_empty() => {
+                let [indices, copy] = pqq::child_face_indices_twice(&parent);
+                list_indices(&seam_corners, &mut attributes, Cow::Owned(copy));
+                let face_sizes = vec![4; parent.num_half_edges()];
+                return (PolyMesh { positions, indices, face_sizes }, attributes);
+            }
+            form => Refined::new(form, Channels::default()).into_poly(),
+        };
+        list_indices(&seam_corners, &mut attributes, Cow::Borrowed(&poly.indices));
         (poly, attributes)
     }
 
@@ -233,14 +241,19 @@ impl<'a> Refined<'a> {
     }
 }
 
-/// Gives the attributes of `seam_corners` their index lists: `faces` patched near seams.
+/// Gives the attributes of `seam_corners` their index lists: `faces` patched near seams (the
+/// last one takes `faces` itself when it is owned).
 fn list_indices(
     seam_corners: &[(usize, SeamCorners)],
     attributes: &mut [Attribute],
-    faces: &[u32],
+    mut faces: Cow<'_, [u32]>,
 ) {
-    for (i, seams) in seam_corners {
-        let mut indices = faces.to_vec();
+    for (k, (i, seams)) in seam_corners.iter().enumerate() {
+        let mut indices = if k + 1 == seam_corners.len() {
+            std::mem::take(&mut faces).into_owned()
+        } else {
+            faces.to_vec()
+        };
         seams.patch(0, &mut indices);
         if let Some(a) = attributes.get_mut(*i) {
             a.indices = Some(indices);
