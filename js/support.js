@@ -44,7 +44,10 @@ export function explained(error) {
   if (!hasWebAssembly()) {
     return new Error(`subsurf needs WebAssembly, which this JavaScript environment does not have: use ${ENGINES}`, { cause: error });
   }
-  if (!hasSimd()) {
+  // Only a module that does not compile or link is the engine's doing; a fetch that failed (an
+  // HTTP 404) keeps its own message, which says where and what to do.
+  const fromModule = error instanceof WebAssembly.CompileError || error instanceof WebAssembly.LinkError;
+  if (fromModule && !hasSimd()) {
     return new Error('subsurf could not load its module on this engine, which does not run WebAssembly SIMD. ' +
       'Such engines need subsurf_nosimd.wasm (the entries load it by themselves; pass its URL or bytes where you ' +
       `give init() or initSync() a module), which runs on ${ENGINES}; subsurf_bg.wasm needs ${SIMD_ENGINES}`, { cause: error });

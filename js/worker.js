@@ -22,7 +22,9 @@ async function load(wasm) {
   const url = source ?? moduleUrl();
   const response = await fetch(url);
   if (!response.ok) {
-    throw new Error(`subsurf/worker: could not load the wasm from ${url}: HTTP ${response.status}; pass createWorker({ wasm }) the URL where subsurf_bg.wasm is served`);
+    // The file this engine needs: subsurf_nosimd.wasm where WebAssembly SIMD is missing.
+    const file = moduleUrl().pathname.split('/').pop();
+    throw new Error(`subsurf/worker: could not load the wasm from ${url}: HTTP ${response.status}; pass createWorker({ wasm }) the URL where ${file} is served`);
   }
   // Streaming compilation needs the application/wasm type; other servers get the bytes path.
   if (typeof WebAssembly.compileStreaming === 'function' && response.headers.get('content-type')?.startsWith('application/wasm')) {

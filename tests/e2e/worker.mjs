@@ -244,7 +244,7 @@ try {
     results.argsNotArray.message.includes('args must be an array'), JSON.stringify(results.argsNotArray));
   check('a worker script that does not load rejects the call, saying so', /the worker stopped during subdivide/.test(results.missingScript.message ?? ''),
     JSON.stringify(results.missingScript));
-  check('a .wasm that does not load rejects the call, saying where and what to do', /missing\.wasm: HTTP 404; pass createWorker\(\{ wasm \}\)/.test(results.missingWasm.message ?? ''),
+  check('a .wasm that does not load rejects the call, saying where and what to do', /missing\.wasm: HTTP 404; pass createWorker\(\{ wasm \}\) the URL where subsurf_bg\.wasm is served/.test(results.missingWasm.message ?? ''),
     JSON.stringify(results.missingWasm));
   const levels = results.progress.map((p) => p.level).join(',');
   check('progress after each level, in order 1..4', levels === '1,2,3,4', levels);

@@ -180,6 +180,14 @@ try {
     try { out.results = await workerResults(worker, S.shape); } catch (e) { out.results = describe(e); }
     worker.terminate();`);
   check('in Chromium without SIMD, subsurf/worker takes subsurf_nosimd.wasm and subdivides as with SIMD', same(onThread.results) === '', same(onThread.results));
+  const unserved = await inPage(`
+    const S = await import('/pkg/init.js'); await S.default();
+    const { createWorker } = await import('/pkg/worker.js');
+    const worker = createWorker({ wasm: '/pkg/missing.wasm' });
+    try { await worker.subdivide(S.shape(CASES[0][0]), CASES[0][1]); out.error = 'resolved'; } catch (e) { out.error = describe(e); }
+    worker.terminate();`);
+  check('in Chromium without SIMD, a subsurf/worker .wasm that does not load names subsurf_nosimd.wasm as the file to serve',
+    /missing\.wasm: HTTP 404; pass createWorker\(\{ wasm \}\) the URL where subsurf_nosimd\.wasm is served/.test(unserved.error?.message), JSON.stringify(unserved.error));
 } finally {
   await browser.close();
   server.close();
