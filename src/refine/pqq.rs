@@ -107,43 +107,23 @@ fn uniform_cells<const N: usize>(mesh: &HalfEdgeMesh) -> (&[[u32; N]], &[[u32; N
 }
 
 /// Every child quad of a parent whose cells all have `N` corners, cell by cell.
-fn uniform_child_quads<const N: usize>(
-    mesh: &HalfEdgeMesh,
-) -> impl ExactSizeIterator<Item = [[u32; 4]; N]> + '_ {
+fn uniform_child_quads<const N: usize>(mesh: &HalfEdgeMesh) -> Vec<[u32; 4]> {
     let (corners, edges, counts) = uniform_cells::<N>(mesh);
-    (0..corners.len()).map(move |c| child_quads_of_cell(corners, edges, counts, c))
+    let cells = 0..corners.len();
+    let quads: Vec<_> = cells.map(|c| child_quads_of_cell(corners, edges, counts, c)).collect();
+    quads.into_flattened()
 }
 
 /// The child cells' vertex indices (four per parent half-edge); the face list of the last level.
 pub fn child_face_indices(mesh: &HalfEdgeMesh) -> Vec<u32> {
     // Collected from an exact-size iterator: written in place, neither zeroed first nor
     // grown piece by piece (both cost a pass on wasm).
-    match mesh.cell_size {
-        4 => uniform_child_quads::<4>(mesh).collect::<Vec<_>>().into_flattened().into_flattened(),
-        3 => uniform_child_quads::<3>(mesh).collect::<Vec<_>>().into_flattened().into_flattened(),
-        _ => child_quads(mesh).collect::<Vec<_>>().into_flattened(),
-    }
-}
-
-/// [`child_face_indices`] twice, made in one pass: each quad is stored twice from registers,
-/// where a copy of the list would read it back from memory (64 MB at level 1 of a 1M-quad
-/// mesh). The second is the index list of a face-varying channel whose values are numbered as
-/// the child's vertices but near seams ([`crate::fvar::SeamCorners`]).
-pub fn child_face_indices_twice(mesh: &HalfEdgeMesh) -> [Vec<u32>; 2] {
-    fn twice<T: Copy, const M: usize>(items: impl Iterator<Item = [T; M]>) -> [Vec<T>; 2] {
-        let (a, b): (Vec<_>, Vec<_>) = items.map(|x| (x, x)).unzip();
-        [a.into_flattened(), b.into_flattened()]
-    }
-    match mesh.cell_size {
-        4 => twice(uniform_child_quads::<4>(mesh)).map(|q| q.into_flattened()),
-        3 => twice(uniform_child_quads::<3>(mesh)).map(|q| q.into_flattened()),
-        _ => twice(child_quads(mesh)),
-    }
-}
-
-/// The child quad of every parent half-edge, in order ([`child_quad`]).
-fn child_quads(mesh: &HalfEdgeMesh) -> impl ExactSizeIterator<Item = [u32; 4]> + '_ {
-    (0..mesh.num_half_edges() as u32).map(|h| child_quad(mesh, h))
+    let quads: Vec<[u32; 4]> = match mesh.cell_size {
+        4 => uniform_child_quads::<4>(mesh),
+        3 => uniform_child_quads::<3>(mesh),
+        _ => (0..mesh.num_half_edges() as u32).map(|h| child_quad(mesh, h)).collect(),
+    };
+    quads.into_flattened()
 }
 
 /// [`child_face_indices`] to `faces` and its fan triangulation (two triangles per parent
