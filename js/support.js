@@ -27,6 +27,11 @@ export function hasSimd() {
   return hasWebAssembly() && WebAssembly.validate(SIMD_PROBE);
 }
 
+/** The file name of the module this engine loads, as the package ships it (a bundler may rename the asset). */
+export function moduleFile() {
+  return hasSimd() ? 'subsurf_bg.wasm' : 'subsurf_nosimd.wasm';
+}
+
 /**
  * The URL of the module this engine loads: subsurf_bg.wasm, or subsurf_nosimd.wasm without
  * SIMD. Each URL is written literally, `new URL('./file', import.meta.url)`, so that Vite and

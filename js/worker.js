@@ -4,7 +4,7 @@
 // Both URLs are written as `new URL('./file', import.meta.url)`, literally, inside the call that
 // uses them: Vite and webpack 5 recognise that pattern with no configuration, bundling the
 // worker script as a worker entry and the .wasm as an asset.
-import { explained, moduleUrl } from './support.js';
+import { explained, moduleFile, moduleUrl } from './support.js';
 import { WorkerClient } from './worker-client.js';
 
 /** The compiled subsurf wasm from `wasm` (a Module, a promise of one, or where to fetch it). */
@@ -22,9 +22,7 @@ async function load(wasm) {
   const url = source ?? moduleUrl();
   const response = await fetch(url);
   if (!response.ok) {
-    // The file this engine needs: subsurf_nosimd.wasm where WebAssembly SIMD is missing.
-    const file = moduleUrl().pathname.split('/').pop();
-    throw new Error(`subsurf/worker: could not load the wasm from ${url}: HTTP ${response.status}; pass createWorker({ wasm }) the URL where ${file} is served`);
+    throw new Error(`subsurf/worker: could not load the wasm from ${url}: HTTP ${response.status}; pass createWorker({ wasm }) the URL where ${moduleFile()} is served`);
   }
   // Streaming compilation needs the application/wasm type; other servers get the bytes path.
   if (typeof WebAssembly.compileStreaming === 'function' && response.headers.get('content-type')?.startsWith('application/wasm')) {
