@@ -353,21 +353,21 @@ fn join<const W: usize, const A: usize, const B: usize>(
 }
 
 /// One packed point: `p`, then `a` and `b` when they hold `A` and `B` floats (zeros otherwise).
+/// Made float by float in registers: built in a zeroed array with slice copies, each point went
+/// through the stack before its store.
 #[inline(always)]
 fn packed_point<const W: usize, const A: usize, const B: usize>(
     p: &[f32; 3],
     a: &[f32],
     b: &[f32],
 ) -> [f32; W] {
-    let mut point = [0.0; W];
-    point[..3].copy_from_slice(p);
-    if let (Some(to), Some(from)) = (point.get_mut(3..3 + A), a.first_chunk::<A>()) {
-        to.copy_from_slice(from);
-    }
-    if let (Some(to), Some(from)) = (point.get_mut(3 + A..3 + A + B), b.first_chunk::<B>()) {
-        to.copy_from_slice(from);
-    }
-    point
+    let (a, b) = (a.first_chunk::<A>(), b.first_chunk::<B>());
+    std::array::from_fn(|i| match i {
+        0..3 => p[i],
+        _ if i < 3 + A => a.map_or(0.0, |a| a[i - 3]),
+        _ if i < 3 + A + B => b.map_or(0.0, |b| b[i - 3 - A]),
+        _ => 0.0,
+    })
 }
 
 /// Where a host appends a level's new values: the values themselves (every kind of
