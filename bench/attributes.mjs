@@ -2,8 +2,9 @@
 // with a vertex-varying `color` (itemSize 3), with a face-varying `uv` (itemSize 2, the torus's
 // (u, v) grid: seams along both closing loops), and with both, calls rotating in one process
 // (rounds, the first left out) so that the drift of a shared VM hits all alike. Prints best and
-// median ms of each and the ratios of the best times to the plain call's (the attributes
-// issue's target for uv + color is at most 1.6; the medians catch the VM's spikes). Given
+// median ms of each, the ratios of the best times to the plain call's, and the median of each
+// round's ratio to the plain call of that round (the attributes issue's target for uv + color is
+// at most 1.6; the medians catch the VM's spikes). Given
 // package directories (pkg/ of two worktrees, each from scripts/build-pkg.sh), it alternates
 // them too (each going first in every other round) and prints one line per package: the way to
 // tell whether a change helped.
@@ -60,8 +61,16 @@ const stats = (t) => {
 packages.forEach((_, k) => {
   const all = Object.fromEntries(Object.entries(times[k]).map(([name, t]) => [name, stats(t)]));
   const base = all['positions only'];
+  // Each round's call against the plain call of the same round, then the median of those: calls
+  // made side by side share the VM's state of the moment, which the best and median times of
+  // separate calls do not (the VM drifts by 10-30 % within a run).
+  const plainTimes = times[k]['positions only'];
+  const paired = (name) => stats(times[k][name].map((t, r) => t / plainTimes[r])).median;
   const parts = Object.entries(all).map(([name, { best, median }]) => {
-    const ratio = name === 'positions only' ? '' : `, ratio ${(all[name].best / base.best).toFixed(2)}`;
+    const ratio =
+      name === 'positions only'
+        ? ''
+        : `, ratio ${(best / base.best).toFixed(2)} (per round: median ${paired(name).toFixed(2)})`;
     return `${name} best ${best.toFixed(0)} median ${median.toFixed(0)} ms${ratio}`;
   });
   const label = packages.length > 1 ? `${dirs[k]}: ` : '';

@@ -105,7 +105,8 @@ fn main() {
 /// face-varying `uv` (seams along both closing loops), alternating (the attributes issue's
 /// target for uv + color is at most 1.6 times the plain time). Best and median of
 /// `SUBSURF_BENCH_ROUNDS` rounds (7), with the ratios of each to the plain call's: the best
-/// times are what `bench/attributes.mjs` compares in wasm; the medians take the VM's spikes in.
+/// times are what `bench/attributes.mjs` compares in wasm; the medians take the VM's spikes in;
+/// the median of each round's ratio to that round's plain call cancels the VM's drift.
 fn attribute_cost(quads: &PolyMesh) {
     let color: Vec<f32> = (0..quads.positions.len()).map(|i| (i % 7) as f32 / 7.0).collect();
     let color = Attribute::vertex("color", 3, color);
@@ -126,15 +127,24 @@ fn attribute_cost(quads: &PolyMesh) {
         drop(subdivide_with_attributes(quads, &both, &options, &none));
         textured.push(t.elapsed());
     }
+    // Each round's call against the plain call of the same round: calls made side by side share
+    // the machine's state of the moment, which separate best and median times do not.
+    let per_round = |times: &[Duration]| {
+        let mut ratios: Vec<f64> =
+            times.iter().zip(&plain).map(|(t, p)| t.as_secs_f64() / p.as_secs_f64()).collect();
+        ratios.sort_by(f64::total_cmp);
+        ratios[ratios.len() / 2]
+    };
+    let (colored_paired, textured_paired) = (per_round(&colored), per_round(&textured));
     for times in [&mut plain, &mut colored, &mut textured] {
         times.sort();
     }
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let mid = plain.len() / 2;
-    let stats = |t: &[Duration]| {
+    let stats = |t: &[Duration], paired: f64| {
         let (best, median) = (t[0], t[mid]);
         format!(
-            "best {:.1} median {:.1} ms (ratios {:.2}, {:.2})",
+            "best {:.1} median {:.1} ms (ratios {:.2}, {:.2}; per round {paired:.2})",
             ms(best),
             ms(median),
             best.as_secs_f64() / plain[0].as_secs_f64(),
@@ -145,7 +155,7 @@ fn attribute_cost(quads: &PolyMesh) {
         "\nattributes: catmull-clark torus 1M quads L1, {rounds} rounds: positions only best {:.1} median {:.1} ms | + color (3) {} | + uv (2, face-varying) and color {}",
         ms(plain[0]),
         ms(plain[mid]),
-        stats(&colored),
-        stats(&textured)
+        stats(&colored, colored_paired),
+        stats(&textured, textured_paired)
     );
 }
