@@ -271,21 +271,23 @@ impl Numbering {
     }
 }
 
-/// Writes into `out` (`N` floats per vertex) the row of `values` that `firsts` gives each vertex
-/// that no seam or boundary rule marked (`mismatch`); the others are written when visited.
-fn copy_first_values<const N: usize>(
-    out: &mut [f32],
+/// Each vertex's row of `values` (`N` floats) as `firsts` gives it for the vertices that no
+/// seam or boundary rule marked (`mismatch`), zeros for the others (written when visited),
+/// with room for `room` floats. Made row by row, not zeroed first and written over.
+fn first_values<const N: usize>(
     values: &[f32],
-    firsts: &[u32],
-    mismatch: &[bool],
-) {
+    (firsts, mismatch): (&[u32], &[u8]),
+    room: usize,
+) -> Vec<f32> {
     let (rows, _) = values.as_chunks::<N>();
-    let (out, _) = out.as_chunks_mut::<N>();
-    for ((target, &first), &mismatched) in out.iter_mut().zip(firsts).zip(mismatch) {
-        if let Some(row) = rows.get(first as usize).filter(|_| !mismatched) {
-            *target = *row;
+    let mut out: Vec<[f32; N]> = Vec::with_capacity(room.div_ceil(N));
+    out.extend(firsts.iter().zip(mismatch).map(|(&first, &mismatched)| {
+        match rows.get(first as usize) {
+            Some(row) if mismatched == 0 => *row,
+            _ => [0.0; N],
         }
-    }
+    }));
+    out.into_flattened()
 }
 
 /// The seams of a first level: each edge's tag, and per vertex whether a seam or the boundary
@@ -293,7 +295,8 @@ fn copy_first_values<const N: usize>(
 /// the value its first corner sees (`firsts`, `u32::MAX` for a vertex without corners).
 struct Seams {
     edge_tags: Vec<u8>,
-    mismatch: Vec<bool>,
+    /// 1 where a seam or the boundary touches the vertex (bytes, for [`for_each_marked`]).
+    mismatch: Vec<u8>,
     early: Vec<bool>,
     boundary: Vec<bool>,
     firsts: Vec<u32>,
@@ -307,7 +310,7 @@ impl Seams {
             indices[corner as usize]
         };
         let mut edge_tags = vec![0u8; ne];
-        let mut mismatch = vec![false; nv];
+        let mut mismatch = vec![0u8; nv];
         // OpenSubdiv visits the vertices in order and marks both ends of a seam when it meets
         // the seam at one of them; a boundary vertex is tested for the mode's own sharpening
         // only if no seam marked it before its turn.
@@ -317,8 +320,8 @@ impl Seams {
             edge_tag::MISMATCH | if mode.linear_boundaries { edge_tag::LINEAR } else { 0 };
         let mut mark_seam = |e: u32, [a, b]: [u32; 2], at_a: bool, at_b: bool| {
             edge_tags[e as usize] = seam_tag;
-            mismatch[a as usize] = true;
-            mismatch[b as usize] = true;
+            mismatch[a as usize] = 1;
+            mismatch[b as usize] = 1;
             if at_a {
                 early[a as usize] = true;
                 early[b as usize] |= b > a;
@@ -484,13 +487,16 @@ impl FVarLevel {
         let Seams { mut edge_tags, mut mismatch, early, boundary, firsts } =
             Seams::find(mesh, indices, mode);
         let smooth_corners_sharp = !sharp.sharp_corners && mode.corners_sharp;
-        for v in 0..nv as u32 {
+        // Each interior edge has two half-edges and each boundary edge one: a mesh with simple
+        // edges and twice as many half-edges as edges has no boundary vertex to visit.
+        let closed = mesh.has_simple_edges() && mesh.num_half_edges() == 2 * mesh.num_edges();
+        for v in (0..nv as u32).filter(|_| !closed) {
             if !boundary[v as usize] || early[v as usize] {
                 continue;
             }
             let out = mesh.out_half_edges(v);
             if mode.linear_boundaries && !out.is_empty() {
-                mismatch[v as usize] = true;
+                mismatch[v as usize] = 1;
                 for &h in out {
                     for x in [h, mesh.prev_in_cell(h)] {
                         if mesh.he_next_around_edge[x as usize] == x {
@@ -499,16 +505,16 @@ impl FVarLevel {
                     }
                 }
             } else if out.len() == 1 && smooth_corners_sharp {
-                mismatch[v as usize] = true;
+                mismatch[v as usize] = 1;
             }
         }
 
         let mut numbering = Numbering::new(nv);
         // Room for a second value at each mismatched vertex (a seam's, most often), so that the
         // values after the vertices' first ones seldom move the whole array.
-        let mismatched: Vec<u32> = (0..nv as u32).filter(|&v| mismatch[v as usize]).collect();
-        let mut values_out = Vec::with_capacity((nv + 2 * mismatched.len()) * width);
-        values_out.resize(nv * width, 0.0f32);
+        let mut mismatched = Vec::new();
+        for_each_marked(&mismatch, 1, |v| mismatched.push(v as u32));
+        let room = (nv + 2 * mismatched.len()) * width;
         let mut extra_values = Vec::new();
         // A vertex with one value numbers it as itself, so its corners see the vertex: start
         // from that (a copy), and let the vertices with several values write theirs.
@@ -517,23 +523,26 @@ impl FVarLevel {
         let maybe_non_manifold =
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
         // On a manifold mesh, a vertex that no seam or boundary rule touches has the one value
-        // its first corner sees: copied in one tight pass, the mismatched ones visited after.
-        if !maybe_non_manifold {
-            let (out, mismatch) = (&mut values_out, &mismatch);
-            match width {
-                2 => copy_first_values::<2>(out, values, &firsts, mismatch),
-                3 => copy_first_values::<3>(out, values, &firsts, mismatch),
-                4 => copy_first_values::<4>(out, values, &firsts, mismatch),
-                _ => {
-                    let rows = out.chunks_exact_mut(width.max(1)).zip(&firsts).zip(mismatch);
-                    for ((target, &first), _) in rows.filter(|(_, &m)| !m) {
+        // its first corner sees: made in one tight pass, the mismatched ones visited after.
+        let firsts = (!maybe_non_manifold).then_some((&firsts[..], &mismatch[..]));
+        let mut values_out = match (firsts, width) {
+            (Some(firsts), 2) => first_values::<2>(values, firsts, room),
+            (Some(firsts), 3) => first_values::<3>(values, firsts, room),
+            (Some(firsts), 4) => first_values::<4>(values, firsts, room),
+            _ => {
+                let mut out = Vec::with_capacity(room);
+                out.resize(nv * width, 0.0f32);
+                if let Some((firsts, mismatch)) = firsts {
+                    let rows = out.chunks_exact_mut(width.max(1)).zip(firsts).zip(mismatch);
+                    for ((target, &first), _) in rows.filter(|(_, &m)| m == 0) {
                         if first != u32::MAX {
                             target.copy_from_slice(row(first));
                         }
                     }
                 }
+                out
             }
-        }
+        };
         let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { mismatched };
         let (mut fan, mut siblings) = (Vec::new(), Vec::new());
         let mut uniques = Distinct::default();
@@ -544,7 +553,7 @@ impl FVarLevel {
             let manifold = !maybe_non_manifold
                 || (!sharp.tags.is_some_and(|t| t.is_non_manifold_vertex(v))
                     && fan_order(mesh, v, &mut fan).is_some());
-            if !mismatch[v as usize] {
+            if mismatch[v as usize] == 0 {
                 let value = indices[first_corner as usize];
                 // Faces around a non-manifold vertex may disagree without any seam.
                 if manifold || out.iter().all(|&h| indices[h as usize] == value) {
