@@ -487,10 +487,7 @@ impl FVarLevel {
         let Seams { mut edge_tags, mut mismatch, early, boundary, firsts } =
             Seams::find(mesh, indices, mode);
         let smooth_corners_sharp = !sharp.sharp_corners && mode.corners_sharp;
-        // Each interior edge has two half-edges and each boundary edge one: a mesh with simple
-        // edges and twice as many half-edges as edges has no boundary vertex to visit.
-        let closed = mesh.has_simple_edges() && mesh.num_half_edges() == 2 * mesh.num_edges();
-        for v in (0..nv as u32).filter(|_| !closed) {
+        for v in 0..nv as u32 {
             if !boundary[v as usize] || early[v as usize] {
                 continue;
             }
@@ -524,15 +521,15 @@ impl FVarLevel {
             mesh.is_non_manifold() || sharp.tags.is_some_and(|t| !t.non_manifold.is_empty());
         // On a manifold mesh, a vertex that no seam or boundary rule touches has the one value
         // its first corner sees: made in one tight pass, the mismatched ones visited after.
-        let firsts = (!maybe_non_manifold).then_some((&firsts[..], &mismatch[..]));
-        let mut values_out = match (firsts, width) {
-            (Some(firsts), 2) => first_values::<2>(values, firsts, room),
-            (Some(firsts), 3) => first_values::<3>(values, firsts, room),
-            (Some(firsts), 4) => first_values::<4>(values, firsts, room),
+        let manifold_firsts = (!maybe_non_manifold).then_some((&firsts[..], &mismatch[..]));
+        let mut values_out = match (manifold_firsts, width) {
+            (Some(known), 2) => first_values::<2>(values, known, room),
+            (Some(known), 3) => first_values::<3>(values, known, room),
+            (Some(known), 4) => first_values::<4>(values, known, room),
             _ => {
                 let mut out = Vec::with_capacity(room);
                 out.resize(nv * width, 0.0f32);
-                if let Some((firsts, mismatch)) = firsts {
+                if let Some((firsts, mismatch)) = manifold_firsts {
                     let rows = out.chunks_exact_mut(width.max(1)).zip(firsts).zip(mismatch);
                     for ((target, &first), _) in rows.filter(|(_, &m)| m == 0) {
                         if first != u32::MAX {
