@@ -11,7 +11,7 @@
 //   osd_refine [--scheme catmark|loop|bilinear] [--levels N]
 //              [--boundary edge-and-corner|edge-only|none] [--ignore-tags]
 //              [--fvar-linear MODE] [--no-positions] [--varying] [--limit] [--no-normals]
-//              [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
+//              [--time REPEATS] [--color] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]
 //
 // Face-varying data: with --fvar-linear MODE (our kebab-case names of Sdc::Options::
 // FVarLinearInterpolation: none, corners-only, corners-plus1, corners-plus2, boundaries, all) the
@@ -50,6 +50,11 @@
 // time of RefineUniform, of all PrimvarRefiner::Interpolate calls (with the allocation of the
 // per-level position arrays), and of the two together; the refiner's construction from the
 // descriptor (TopologyRefinerFactory::Create) is timed separately, last run only. --no-output skips writing the result (for timing).
+// With --fvar-linear, the timed interpolation includes InterpolateFaceVarying of the `vt` values,
+// and --color adds a vertex-varying channel of three floats per vertex ((i mod 7) / 7, as
+// subsurf's attribute benchmark makes it) interpolated after the positions: the two channels of
+// subsurf's uv + colour target (benches/table.rs), so that OpenSubdiv's own cost for them can be
+// set beside ours. Each run's create, refine and interpolation are timed, and their sum.
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -241,7 +246,7 @@ void usage(int code) {
                  "                  [--boundary edge-and-corner|edge-only|none] [--ignore-tags]\n"
                  "                  [--fvar-linear none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
                  "                  [--no-positions] [--varying] [--limit] [--no-normals]\n"
-                 "                  [--time REPEATS] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
+                 "                  [--time REPEATS] [--color] [--no-output] [--quiet] INPUT.obj [-o OUTPUT.obj]\n");
     std::exit(code);
 }
 
@@ -252,7 +257,7 @@ int main(int argc, char ** argv) {
     int levels = 1;
     int boundaryOverride = -1;  // Sdc::Options::VtxBoundaryInterpolation, or -1
     bool ignoreTags = false, quiet = false, noOutput = false, noPositions = false, varying = false;
-    bool limit = false, noNormals = false;
+    bool limit = false, noNormals = false, color = false;
     int fvarMode = -1;  // Sdc::Options::FVarLinearInterpolation, or -1 for no face-varying data
     int repeats = 0;
     std::string input, output;
@@ -299,6 +304,8 @@ int main(int argc, char ** argv) {
             ignoreTags = true;
         } else if (arg == "--time") {
             repeats = std::max(1, std::atoi(value().c_str()));
+        } else if (arg == "--color") {
+            color = true;
         } else if (arg == "--no-output") {
             noOutput = true;
         } else if (arg == "--quiet") {
@@ -423,8 +430,11 @@ int main(int argc, char ** argv) {
 
     std::unique_ptr<Far::TopologyRefiner> refiner;
     std::vector<std::vector<Point3>> perLevel;
-    std::vector<double> refineTimes, interpolateTimes, totalTimes;
+    std::vector<double> refineTimes, interpolateTimes, totalTimes, createTimes;
     double buildTime = 0;
+    // The timed runs' channels (see --color and --fvar-linear): level by level, reused.
+    std::vector<std::vector<Point3>> colorLevels;
+    std::vector<std::vector<Point2>> timedUvs;
     for (int run = 0; run < std::max(1, repeats); ++run) {
         Clock::time_point t0 = Clock::now();
         refiner.reset(Factory::Create(desc, Factory::Options(scheme, sdcOptions)));
@@ -450,8 +460,33 @@ int main(int argc, char ** argv) {
                 primvar.Interpolate(level, src, dst);
             }
         }
+        if (repeats > 0 && color) {
+            colorLevels.assign(levels + 1, std::vector<Point3>());
+            colorLevels[0].resize(numVertices);
+            for (int v = 0; v < numVertices; ++v)
+                for (int k = 0; k < 3; ++k) colorLevels[0][v].p[k] = (Real)((3 * v + k) % 7) / 7;
+            for (int level = 1; level <= levels; ++level) {
+                colorLevels[level].resize(refiner->GetLevel(level).GetNumVertices());
+                Point3 const * src = colorLevels[level - 1].data();
+                Point3 * dst = colorLevels[level].data();
+                primvar.Interpolate(level, src, dst);
+            }
+        }
+        if (repeats > 0 && fvar) {
+            timedUvs.assign(levels + 1, std::vector<Point2>());
+            timedUvs[0].resize(mesh.uvs.size() / 2);
+            for (size_t t = 0; t < timedUvs[0].size(); ++t)
+                for (int k = 0; k < 2; ++k) timedUvs[0][t].p[k] = mesh.uvs[2 * t + k];
+            for (int level = 1; level <= levels; ++level) {
+                timedUvs[level].resize(refiner->GetLevel(level).GetNumFVarValues(0));
+                Point2 const * src = timedUvs[level - 1].data();
+                Point2 * dst = timedUvs[level].data();
+                primvar.InterpolateFaceVarying(level, src, dst, 0);
+            }
+        }
         Clock::time_point t3 = Clock::now();
         buildTime = seconds(t1 - t0);
+        createTimes.push_back(seconds(t3 - t0));
         refineTimes.push_back(seconds(t2 - t1));
         interpolateTimes.push_back(seconds(t3 - t2));
         totalTimes.push_back(seconds(t3 - t1));
@@ -467,11 +502,14 @@ int main(int argc, char ** argv) {
                      "osd_refine: %s level %d: %d vertices, %d faces; %d runs, best (median) seconds:\n"
                      "  create (TopologyRefinerFactory::Create) %.6f\n"
                      "  refine (RefineUniform)                  %.6f (%.6f)\n"
-                     "  interpolate (PrimvarRefiner, double)    %.6f (%.6f)\n"
-                     "  refine + interpolate                    %.6f (%.6f)\n",
+                     "  interpolate (PrimvarRefiner, %-6s)    %.6f (%.6f)\n"
+                     "  refine + interpolate                    %.6f (%.6f)\n"
+                     "  create + refine + interpolate           %.6f (%.6f)\n",
                      input.c_str(), levels, last.GetNumVertices(), last.GetNumFaces(), (int)totalTimes.size(),
-                     buildTime, best(refineTimes), median(refineTimes), best(interpolateTimes),
-                     median(interpolateTimes), best(totalTimes), median(totalTimes));
+                     buildTime, best(refineTimes), median(refineTimes), sizeof(Real) == 4 ? "float" : "double",
+                     best(interpolateTimes),
+                     median(interpolateTimes), best(totalTimes), median(totalTimes), best(createTimes),
+                     median(createTimes));
     }
 
     // Face-varying values, level by level (after any timing: they are not part of it).
