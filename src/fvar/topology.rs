@@ -271,23 +271,51 @@ impl Numbering {
     }
 }
 
-/// Each vertex's row of `values` (`N` floats) as `firsts` gives it for the vertices that no
-/// seam or boundary rule marked (`mismatch`), zeros for the others (written when visited),
-/// with room for `room` floats. Made row by row, not zeroed first and written over.
-fn first_values<const N: usize>(
+/// Each vertex's row of `values` (`width` floats) as `known` gives it on a manifold mesh: the
+/// value its first corner sees (`firsts`) for the vertices that no seam or boundary rule marked
+/// (`mismatch`), zeros for the others (written when visited); all `nv` rows zeros without
+/// `known`. Room for `room` floats. Made row by row, not zeroed first and written over, with
+/// the common widths at constant width.
+fn first_values(
     values: &[f32],
-    (firsts, mismatch): (&[u32], &[u8]),
+    width: usize,
+    known: Option<(&[u32], &[u8])>,
+    nv: usize,
     room: usize,
 ) -> Vec<f32> {
-    let (rows, _) = values.as_chunks::<N>();
-    let mut out: Vec<[f32; N]> = Vec::with_capacity(room.div_ceil(N));
-    out.extend(firsts.iter().zip(mismatch).map(|(&first, &mismatched)| {
-        match rows.get(first as usize) {
-            Some(row) if mismatched == 0 => *row,
-            _ => [0.0; N],
+    fn rows<const N: usize>(
+        values: &[f32],
+        (firsts, mismatch): (&[u32], &[u8]),
+        room: usize,
+    ) -> Vec<f32> {
+        let (rows, _) = values.as_chunks::<N>();
+        let mut out: Vec<[f32; N]> = Vec::with_capacity(room.div_ceil(N));
+        out.extend(firsts.iter().zip(mismatch).map(|(&first, &mismatched)| {
+            match rows.get(first as usize) {
+                Some(row) if mismatched == 0 => *row,
+                _ => [0.0; N],
+            }
+        }));
+        out.into_flattened()
+    }
+    let mut out = Vec::with_capacity(room);
+    match (known, width) {
+        (Some(known), 2) => return rows::<2>(values, known, room),
+        (Some(known), 3) => return rows::<3>(values, known, room),
+        (Some(known), 4) => return rows::<4>(values, known, room),
+        (Some((firsts, mismatch)), _) => {
+            for (&first, &mismatched) in firsts.iter().zip(mismatch) {
+                // `u32::MAX` (no corner) would overflow the product on 32-bit targets.
+                let row = (mismatched == 0 && first != u32::MAX).then(|| first as usize * width);
+                match row.and_then(|at| values.get(at..at + width)) {
+                    Some(row) => out.extend_from_slice(row),
+                    None => out.resize(out.len() + width, 0.0),
+                }
+            }
         }
-    }));
-    out.into_flattened()
+        (None, _) => out.resize(nv * width, 0.0),
+    }
+    out
 }
 
 /// The seams of a first level: each edge's tag, and per vertex whether a seam or the boundary
@@ -522,24 +550,7 @@ impl FVarLevel {
         // On a manifold mesh, a vertex that no seam or boundary rule touches has the one value
         // its first corner sees: made in one tight pass, the mismatched ones visited after.
         let manifold_firsts = (!maybe_non_manifold).then_some((&firsts[..], &mismatch[..]));
-        let mut values_out = match (manifold_firsts, width) {
-            (Some(known), 2) => first_values::<2>(values, known, room),
-            (Some(known), 3) => first_values::<3>(values, known, room),
-            (Some(known), 4) => first_values::<4>(values, known, room),
-            _ => {
-                let mut out = Vec::with_capacity(room);
-                out.resize(nv * width, 0.0f32);
-                if let Some((firsts, mismatch)) = manifold_firsts {
-                    let rows = out.chunks_exact_mut(width.max(1)).zip(firsts).zip(mismatch);
-                    for ((target, &first), _) in rows.filter(|(_, &m)| m == 0) {
-                        if first != u32::MAX {
-                            target.copy_from_slice(row(first));
-                        }
-                    }
-                }
-                out
-            }
-        };
+        let mut values_out = first_values(values, width, manifold_firsts, nv, room);
         let visit = if maybe_non_manifold { (0..nv as u32).collect() } else { mismatched };
         let (mut fan, mut siblings) = (Vec::new(), Vec::new());
         let mut uniques = Distinct::default();

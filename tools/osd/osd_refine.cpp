@@ -51,8 +51,8 @@
 // per-level position arrays), and of the two together; the refiner's construction from the
 // descriptor (TopologyRefinerFactory::Create) is timed separately, last run only. --no-output skips writing the result (for timing).
 // With --fvar-linear, the timed interpolation includes InterpolateFaceVarying of the `vt` values,
-// and --color adds a vertex-varying channel of three floats per vertex ((i mod 7) / 7, as
-// subsurf's attribute benchmark makes it) interpolated after the positions: the two channels of
+// and --color adds to the timed runs a vertex-varying channel of three floats per vertex
+// ((i mod 7) / 7, as subsurf's attribute benchmark makes it) interpolated after the positions: the two channels of
 // subsurf's uv + colour target (benches/table.rs), so that OpenSubdiv's own cost for them can be
 // set beside ours. Each run's create, refine and interpolation are timed, and their sum.
 
@@ -430,11 +430,24 @@ int main(int argc, char ** argv) {
 
     std::unique_ptr<Far::TopologyRefiner> refiner;
     std::vector<std::vector<Point3>> perLevel;
-    std::vector<double> refineTimes, interpolateTimes, totalTimes, createTimes;
+    std::vector<double> refineTimes, interpolateTimes, totalTimes, wholeTimes;
     double buildTime = 0;
-    // The timed runs' channels (see --color and --fvar-linear): level by level, reused.
-    std::vector<std::vector<Point3>> colorLevels;
-    std::vector<std::vector<Point2>> timedUvs;
+    // The face-varying values, level by level, with a PrimvarRefiner of either precision: in the
+    // timed runs (with --time) and for the output.
+    std::vector<std::vector<Point2>> uvLevels;
+    auto interpolateUvs = [&](auto const & primvar) {
+        uvLevels.assign(levels + 1, std::vector<Point2>());
+        uvLevels[0].resize(mesh.uvs.size() / 2);
+        for (size_t t = 0; t < uvLevels[0].size(); ++t)
+            for (int k = 0; k < 2; ++k) uvLevels[0][t].p[k] = mesh.uvs[2 * t + k];
+        for (int level = 1; level <= levels; ++level) {
+            uvLevels[level].resize(refiner->GetLevel(level).GetNumFVarValues(0));
+            Point2 const * src = uvLevels[level - 1].data();
+            Point2 * dst = uvLevels[level].data();
+            primvar.InterpolateFaceVarying(level, src, dst, 0);
+        }
+    };
+    std::vector<std::vector<Point3>> colorLevels;  // --color, in the timed runs
     for (int run = 0; run < std::max(1, repeats); ++run) {
         Clock::time_point t0 = Clock::now();
         refiner.reset(Factory::Create(desc, Factory::Options(scheme, sdcOptions)));
@@ -472,21 +485,10 @@ int main(int argc, char ** argv) {
                 primvar.Interpolate(level, src, dst);
             }
         }
-        if (repeats > 0 && fvar) {
-            timedUvs.assign(levels + 1, std::vector<Point2>());
-            timedUvs[0].resize(mesh.uvs.size() / 2);
-            for (size_t t = 0; t < timedUvs[0].size(); ++t)
-                for (int k = 0; k < 2; ++k) timedUvs[0][t].p[k] = mesh.uvs[2 * t + k];
-            for (int level = 1; level <= levels; ++level) {
-                timedUvs[level].resize(refiner->GetLevel(level).GetNumFVarValues(0));
-                Point2 const * src = timedUvs[level - 1].data();
-                Point2 * dst = timedUvs[level].data();
-                primvar.InterpolateFaceVarying(level, src, dst, 0);
-            }
-        }
+        if (repeats > 0 && fvar) interpolateUvs(primvar);
         Clock::time_point t3 = Clock::now();
         buildTime = seconds(t1 - t0);
-        createTimes.push_back(seconds(t3 - t0));
+        wholeTimes.push_back(seconds(t3 - t0));
         refineTimes.push_back(seconds(t2 - t1));
         interpolateTimes.push_back(seconds(t3 - t2));
         totalTimes.push_back(seconds(t3 - t1));
@@ -508,25 +510,13 @@ int main(int argc, char ** argv) {
                      input.c_str(), levels, last.GetNumVertices(), last.GetNumFaces(), (int)totalTimes.size(),
                      buildTime, best(refineTimes), median(refineTimes), sizeof(Real) == 4 ? "float" : "double",
                      best(interpolateTimes),
-                     median(interpolateTimes), best(totalTimes), median(totalTimes), best(createTimes),
-                     median(createTimes));
+                     median(interpolateTimes), best(totalTimes), median(totalTimes), best(wholeTimes),
+                     median(wholeTimes));
     }
 
-    // Face-varying values, level by level (after any timing: they are not part of it).
-    std::vector<std::vector<Point2>> uvLevels;
-    if (fvar) {
-        uvLevels.assign(levels + 1, std::vector<Point2>());
-        uvLevels[0].resize(mesh.uvs.size() / 2);
-        for (size_t t = 0; t < uvLevels[0].size(); ++t)
-            for (int k = 0; k < 2; ++k) uvLevels[0][t].p[k] = mesh.uvs[2 * t + k];
-        Far::PrimvarRefinerReal<double> primvar(*refiner);
-        for (int level = 1; level <= levels; ++level) {
-            uvLevels[level].resize(refiner->GetLevel(level).GetNumFVarValues(0));
-            Point2 const * src = uvLevels[level - 1].data();
-            Point2 * dst = uvLevels[level].data();
-            primvar.InterpolateFaceVarying(level, src, dst, 0);
-        }
-    }
+    // The output's face-varying values in double whatever the positions' precision (as the
+    // fixtures always were), again after any timed runs.
+    if (fvar) interpolateUvs(Far::PrimvarRefinerReal<double>(*refiner));
 
     // The limit of the last level (after any timing too).
     std::vector<Point3> limitPoints, tan1, tan2;
